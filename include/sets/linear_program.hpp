@@ -1,0 +1,120 @@
+#pragma once
+// LP and MILP over GLPK: build once, change the objective, re-solve from the last basis.
+//
+// Threads: GLPK keeps its state in thread-local storage (Debian builds it so), but a problem
+// object must be created, used and destroyed on one thread. `LinearProgram` is movable, not
+// copyable; never share one between threads. Separate objects on separate threads are safe
+// (tests/linear_program_test.cpp runs PUIs on several threads at once).
+//
+// Guarantees: `LpSolution::objective` is a floating-point optimum, not a bound. For a rigorous
+// bound call `safe_bound` (Neumaier–Shcherbina, see safe_bound.hpp), which needs finite variable
+// bounds wherever the reduced cost is not exactly zero.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sets {
+
+inline constexpr double inf = std::numeric_limits<double>::infinity();
+
+enum class Sense { minimize, maximize };
+enum class LpStatus { optimal, infeasible, unbounded };
+
+struct LpSolution {
+  LpStatus status = LpStatus::infeasible;
+  Sense sense = Sense::minimize;
+  double objective = 0;          // floating-point optimum (not a guaranteed bound)
+  Eigen::VectorXd x;             // primal point
+  Eigen::VectorXd row_dual;      // multipliers of the rows, GLPK convention
+  Eigen::VectorXd reduced_cost;  // c - A^T row_dual, as GLPK computed it
+  int iterations = 0;
+};
+
+enum class MilpStatus { optimal, feasible, infeasible, no_solution };
+
+struct MilpOptions {
+  double time_limit_s = 60;  // GLPK branch-and-cut stops here with its incumbent
+  double relative_gap = 1e-6;
+  bool verbose = false;
+};
+
+struct MilpSolution {
+  MilpStatus status = MilpStatus::no_solution;
+  double objective = 0;   // incumbent value (valid when status is optimal or feasible)
+  double best_bound = 0;  // bound from the branch-and-bound tree
+  double gap = inf;       // |objective - best_bound| / max(1, |objective|)
+  double seconds = 0;
+  Eigen::VectorXd x;
+};
+
+/// A linear program  min/max c^T x  s.t.  row_lo <= A x <= row_hi,  col_lo <= x <= col_hi.
+/// Bounds may be infinite. Integer columns turn it into a MILP (solve_milp).
+class LinearProgram {
+ public:
+  explicit LinearProgram(int num_variables = 0);
+  ~LinearProgram();
+  LinearProgram(LinearProgram&&) noexcept;
+  LinearProgram& operator=(LinearProgram&&) noexcept;
+  LinearProgram(const LinearProgram&) = delete;
+  LinearProgram& operator=(const LinearProgram&) = delete;
+
+  int num_variables() const;
+  int num_rows() const;
+
+  /// Appends variables with bounds [lo, hi]; returns the index of the first one.
+  int add_variables(int count, double lo = -inf, double hi = inf);
+  void set_variable_bounds(int j, double lo, double hi);
+  double variable_lower(int j) const;
+  double variable_upper(int j) const;
+  void set_integer(int j, bool integer = true);
+
+  /// Appends the row lo <= a^T x <= hi (dense or sparse coefficients); returns its index.
+  int add_row(const Eigen::Ref<const Eigen::VectorXd>& a, double lo, double hi);
+  int add_row(const std::vector<std::pair<int, double>>& entries, double lo, double hi);
+  /// Appends the rows lo <= A x <= hi.
+  int add_rows(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::VectorXd>& lo,
+               const Eigen::Ref<const Eigen::VectorXd>& hi);
+  int add_rows(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
+               const Eigen::Ref<const Eigen::VectorXd>& lo, const Eigen::Ref<const Eigen::VectorXd>& hi);
+  void set_row_bounds(int i, double lo, double hi);
+  double row_lower(int i) const;
+  double row_upper(int i) const;
+  /// Row i's stored coefficients as (column, value) pairs.
+  const std::vector<std::pair<int, double>>& row(int i) const;
+
+  void set_objective(const Eigen::Ref<const Eigen::VectorXd>& c, Sense sense);
+  /// Objective +-x_j: the building block of every PUI.
+  void set_objective_coordinate(int j, Sense sense);
+  const Eigen::VectorXd& objective() const;
+  Sense sense() const;
+
+  /// Simplex from the last basis (warm start). Throws NumericalError if GLPK fails.
+  LpSolution solve();
+  /// GLPK's exact rational simplex on the stored (double) data: slow, but its verdict on
+  /// feasibility is rigorous. Used to certify that an LP is empty.
+  LpSolution solve_exact();
+  /// Forgets the basis: the next solve starts cold (for benchmarks and recovery).
+  void reset_basis();
+  /// Branch and cut with a time limit; optional starting incumbent (e.g. an LP-rounded point).
+  MilpSolution solve_milp(const MilpOptions& options = {},
+                          const std::optional<Eigen::VectorXd>& start = std::nullopt);
+
+  /// Rigorous bound on the optimum from the dual of `solution` (min: lower bound; max: upper
+  /// bound), or -inf/+inf if none can be certified. See safe_bound.hpp.
+  double safe_bound(const LpSolution& solution) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+const char* to_string(LpStatus s);
+const char* to_string(MilpStatus s);
+
+}  // namespace sets

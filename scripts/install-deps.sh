@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs every build, test and plot dependency of `sets` from Debian packages.
+# Used by the README's two commands and by .ci/run; safe to run again.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+  build-essential cmake ninja-build pkg-config \
+  libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev \
+  libglpk-dev \
+  libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev \
+  libcli11-dev nlohmann-json3-dev libmuparser-dev libmatio-dev \
+  gnuplot-nox >/dev/null

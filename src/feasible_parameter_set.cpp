@@ -1,0 +1,454 @@
+#include "sets/feasible_parameter_set.hpp"
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <set>
+#include <sstream>
+
+#include "sets/error.hpp"
+#include "sets/linear_program.hpp"
+
+namespace sets {
+
+// ---------------------------------------------------------------- the set
+
+FeasibleParameterSet::FeasibleParameterSet(int dimension) : p_(dimension) {
+  if (dimension <= 0) throw InputError("FeasibleParameterSet: dimension must be positive");
+  Phi_.resize(0, dimension);
+}
+
+FeasibleParameterSet FeasibleParameterSet::from_data(const Eigen::Ref<const Eigen::MatrixXd>& Phi,
+                                                     const Eigen::Ref<const Eigen::VectorXd>& y,
+                                                     const Eigen::Ref<const Eigen::VectorXd>& delta) {
+  if (Phi.rows() != y.size() || delta.size() != y.size())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " regressor rows, " +
+                     std::to_string(y.size()) + " outputs and " + std::to_string(delta.size()) +
+                     " error bounds: the lengths must match");
+  if (Phi.rows() < Phi.cols())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
+                     std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
+  FeasibleParameterSet f(static_cast<int>(Phi.cols()));
+  f.Phi_.resize(Phi.rows(), Phi.cols());
+  f.Y_.resize(Phi.rows());
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+    for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+      if (!std::isfinite(Phi(t, j)))
+        throw InputError("FeasibleParameterSet: sample " + std::to_string(t) + ", regressor entry " +
+                         std::to_string(j) + " is not finite");
+      f.Phi_(t, j) = Interval(Phi(t, j));
+    }
+    if (!std::isfinite(y[t]))
+      throw InputError("FeasibleParameterSet: sample " + std::to_string(t) + ", output y is not finite");
+    if (!(delta[t] >= 0) || !std::isfinite(delta[t]))
+      throw InputError("FeasibleParameterSet: sample " + std::to_string(t) +
+                       ", error bound delta must be finite and >= 0 (got " + std::to_string(delta[t]) + ")");
+    f.Y_[t] = interval_around(y[t], delta[t]);
+  }
+  return f;
+}
+
+FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatrix& Phi,
+                                                              const IntervalVector& Y) {
+  if (Phi.rows() != Y.size())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " regressor rows but " +
+                     std::to_string(Y.size()) + " outputs: the lengths must match");
+  if (Phi.rows() < Phi.cols())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
+                     std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
+  FeasibleParameterSet f(static_cast<int>(Phi.cols()));
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) f.add_strip(IntervalVector(Phi.row(t).transpose()), Y[t]);
+  return f;
+}
+
+void FeasibleParameterSet::add_strip(const Eigen::Ref<const Eigen::VectorXd>& phi, double y, double delta) {
+  const std::string where = "FeasibleParameterSet: sample " + std::to_string(size());
+  if (!std::isfinite(y)) throw InputError(where + ", output y is not finite");
+  if (!(delta >= 0) || !std::isfinite(delta))
+    throw InputError(where + ", error bound delta must be finite and >= 0 (got " + std::to_string(delta) + ")");
+  add_strip(to_interval(phi), interval_around(y, delta));
+}
+
+void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& Y) {
+  const std::string where = "FeasibleParameterSet: sample " + std::to_string(size());
+  if (Phi.size() != p_)
+    throw InputError(where + " has " + std::to_string(Phi.size()) + " regressor entries, expected " +
+                     std::to_string(p_));
+  for (Eigen::Index j = 0; j < Phi.size(); ++j) {
+    if (!std::isfinite(Phi[j].lower()) || !std::isfinite(Phi[j].upper()))
+      throw InputError(where + ", regressor entry " + std::to_string(j) + " is not finite");
+    if (Phi[j].lower() != Phi[j].upper()) eiv_ = true;
+  }
+  if (!std::isfinite(Y.lower()) || !std::isfinite(Y.upper()))
+    throw InputError(where + ", output bound is not finite");
+  const Eigen::Index n = Y_.size();
+  Phi_.conservativeResize(n + 1, p_);
+  Phi_.row(n) = Phi.transpose();
+  Y_.conservativeResize(n + 1);
+  Y_[n] = Y;
+}
+
+BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
+  if (theta.size() != p_) throw InputError("FeasibleParameterSet::contains: wrong dimension");
+  BoolInterval result = BoolInterval::yes;
+  for (Eigen::Index t = 0; t < Y_.size(); ++t) {
+    // The range of phi^T theta over the regressor box is [lo_true, hi_true]; L and U enclose them.
+    Interval L(0.0), U(0.0);
+    for (int j = 0; j < p_; ++j) {
+      const Interval a = Phi_(t, j).lower() * Interval(theta[j]);
+      const Interval b = Phi_(t, j).upper() * Interval(theta[j]);
+      const bool pos = theta[j] >= 0;
+      L += pos ? a : b;
+      U += pos ? b : a;
+    }
+    if (L.lower() > Y_[t].upper() || U.upper() < Y_[t].lower()) return BoolInterval::no;
+    if (!(L.upper() <= Y_[t].upper() && U.lower() >= Y_[t].lower())) result = BoolInterval::unknown;
+  }
+  return result;
+}
+
+Eigen::VectorXd FeasibleParameterSet::least_squares() const {
+  const Eigen::MatrixXd A = midpoint(Phi_);
+  const Eigen::VectorXd y = midpoint(Y_);
+  return A.colPivHouseholderQr().solve(y);
+}
+
+namespace {
+
+// Row coefficients of sample t in orthant s: the minimising (lower) and maximising (upper) ends.
+void orthant_rows(const IntervalMatrix& Phi, Eigen::Index t, const Orthant& s, Eigen::VectorXd& lo_row,
+                  Eigen::VectorXd& hi_row) {
+  const Eigen::Index p = Phi.cols();
+  lo_row.resize(p);
+  hi_row.resize(p);
+  for (Eigen::Index j = 0; j < p; ++j) {
+    const bool pos = s.empty() || s[static_cast<std::size_t>(j)] > 0;
+    lo_row[j] = pos ? Phi(t, j).lower() : Phi(t, j).upper();
+    hi_row[j] = pos ? Phi(t, j).upper() : Phi(t, j).lower();
+  }
+}
+
+}  // namespace
+
+HPolytope FeasibleParameterSet::orthant_polytope(const Orthant& s) const {
+  if (!s.empty() && static_cast<int>(s.size()) != p_)
+    throw InputError("orthant_polytope: orthant has the wrong dimension");
+  if (s.empty() && eiv_)
+    throw InputError("orthant_polytope: interval regressors need an orthant");
+  const Eigen::Index N = Y_.size();
+  const Eigen::Index extra = s.empty() ? 0 : p_;
+  Eigen::MatrixXd A(2 * N + extra, p_);
+  Eigen::VectorXd b(2 * N + extra);
+  Eigen::VectorXd lo_row, hi_row;
+  for (Eigen::Index t = 0; t < N; ++t) {
+    orthant_rows(Phi_, t, s, lo_row, hi_row);
+    A.row(2 * t) = lo_row.transpose();
+    b[2 * t] = Y_[t].upper();
+    A.row(2 * t + 1) = -hi_row.transpose();
+    b[2 * t + 1] = -Y_[t].lower();
+  }
+  for (Eigen::Index j = 0; j < extra; ++j) {
+    A.row(2 * N + j).setZero();
+    A(2 * N + j, j) = -s[static_cast<std::size_t>(j)];
+    b[2 * N + j] = 0;
+  }
+  return HPolytope(std::move(A), std::move(b));
+}
+
+// ---------------------------------------------------------------- PUIs
+
+namespace {
+
+struct OrthantLp {
+  LinearProgram lp;
+  std::vector<int> row_sample;  // LP row -> sample index
+};
+
+OrthantLp build_orthant_lp(const FeasibleParameterSet& fps, const Orthant& s) {
+  const int p = fps.dimension();
+  OrthantLp o{LinearProgram(p), {}};
+  for (int j = 0; j < p; ++j) {
+    if (s.empty()) continue;
+    if (s[static_cast<std::size_t>(j)] > 0)
+      o.lp.set_variable_bounds(j, 0, inf);
+    else
+      o.lp.set_variable_bounds(j, -inf, 0);
+  }
+  Eigen::VectorXd lo_row, hi_row;
+  for (int t = 0; t < fps.size(); ++t) {
+    orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
+    const Interval& Y = fps.outputs()[t];
+    if (lo_row == hi_row) {
+      o.lp.add_row(lo_row, Y.lower(), Y.upper());
+      o.row_sample.push_back(t);
+    } else {
+      o.lp.add_row(lo_row, -inf, Y.upper());
+      o.lp.add_row(hi_row, Y.lower(), inf);
+      o.row_sample.push_back(t);
+      o.row_sample.push_back(t);
+    }
+  }
+  return o;
+}
+
+struct OrthantOutcome {
+  OrthantStatus status = OrthantStatus::unknown;
+  IntervalVector box;
+  Eigen::VectorXd float_lo, float_hi;  // floating-point LP ends (for the Remark-2 zero test)
+  Eigen::MatrixXd lower_points, upper_points;
+  bool certified = false;
+  int lps = 0;
+};
+
+bool is_zero_face(const Orthant& s, int j, bool lower) {
+  if (s.empty()) return false;
+  return lower ? s[static_cast<std::size_t>(j)] > 0 : s[static_cast<std::size_t>(j)] < 0;
+}
+
+OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, bool safe) {
+  const int p = fps.dimension();
+  OrthantLp o = build_orthant_lp(fps, s);
+  OrthantOutcome out;
+  out.float_lo.resize(p);
+  out.float_hi.resize(p);
+  out.lower_points.resize(p, p);
+  out.upper_points.resize(p, p);
+  // Phase 1: floating-point PUIs; the 2p problems share one constraint matrix and warm-start.
+  for (int l = 0; l < p; ++l) {
+    for (Sense sense : {Sense::minimize, Sense::maximize}) {
+      o.lp.set_objective_coordinate(l, sense);
+      const LpSolution sol = o.lp.solve();
+      ++out.lps;
+      if (sol.status == LpStatus::infeasible) {
+        // Certify emptiness with exact rational arithmetic before calling the orthant empty.
+        const LpSolution exact = o.lp.solve_exact();
+        ++out.lps;
+        out.status = exact.status == LpStatus::infeasible ? OrthantStatus::empty : OrthantStatus::unknown;
+        return out;
+      }
+      const bool lower = sense == Sense::minimize;
+      const double end = sol.status == LpStatus::unbounded ? (lower ? -inf : inf) : sol.objective;
+      (lower ? out.float_lo : out.float_hi)[l] = end;
+      (lower ? out.lower_points : out.upper_points).col(l) = sol.x;
+    }
+  }
+  out.status = OrthantStatus::feasible;
+  out.box = make_box(out.float_lo.cwiseMin(out.float_hi), out.float_hi.cwiseMax(out.float_lo));
+  if (!safe) return out;
+
+  // Phase 2: bound the variables by a box X slightly larger than the phase-1 PUIs, so that the
+  // Neumaier–Shcherbina bound is finite. The orthant piece C is convex, so if every safe bound
+  // over C ∩ X stays strictly inside the artificial faces of X, then C ⊂ X and the bounds hold
+  // for C itself (a point of C outside X would put a point of C on an artificial face).
+  Eigen::VectorXd width = out.float_hi - out.float_lo;
+  for (double factor : {1e-2, 1e-1, 1.0, 10.0}) {
+    Eigen::VectorXd xlo(p), xhi(p);
+    for (int j = 0; j < p; ++j) {
+      const double w = std::isfinite(width[j]) ? width[j] : 0.0;
+      const double mlo = factor * w + 1e-8 * (1 + std::abs(out.float_lo[j]));
+      const double mhi = factor * w + 1e-8 * (1 + std::abs(out.float_hi[j]));
+      xlo[j] = is_zero_face(s, j, true) ? 0.0 : out.float_lo[j] - mlo;
+      xhi[j] = is_zero_face(s, j, false) ? 0.0 : out.float_hi[j] + mhi;
+      o.lp.set_variable_bounds(j, xlo[j], xhi[j]);
+    }
+    bool ok = true;
+    Eigen::VectorXd slo(p), shi(p);
+    for (int l = 0; l < p && ok; ++l) {
+      for (Sense sense : {Sense::minimize, Sense::maximize}) {
+        // An unbounded end stays infinite: nothing to certify.
+        if (sense == Sense::minimize && std::isinf(out.float_lo[l])) { slo[l] = -inf; continue; }
+        if (sense == Sense::maximize && std::isinf(out.float_hi[l])) { shi[l] = inf; continue; }
+        o.lp.set_objective_coordinate(l, sense);
+        const LpSolution sol = o.lp.solve();
+        ++out.lps;
+        if (sol.status != LpStatus::optimal) {
+          ok = false;
+          break;
+        }
+        const double bound = o.lp.safe_bound(sol);
+        if (sense == Sense::minimize) {
+          slo[l] = bound;
+          if (!(bound > xlo[l] || is_zero_face(s, l, true))) ok = false;
+        } else {
+          shi[l] = bound;
+          if (!(bound < xhi[l] || is_zero_face(s, l, false))) ok = false;
+        }
+        (sense == Sense::minimize ? out.lower_points : out.upper_points).col(l) = sol.x;
+      }
+    }
+    if (ok) {
+      for (int j = 0; j < p; ++j) {
+        // Ends on a true orthant face are exact (0); infinite ends stay infinite.
+        if (is_zero_face(s, j, true)) slo[j] = std::max(slo[j], 0.0);
+        if (is_zero_face(s, j, false)) shi[j] = std::min(shi[j], 0.0);
+        if (std::isinf(out.float_lo[j])) slo[j] = -inf;
+        if (std::isinf(out.float_hi[j])) shi[j] = inf;
+      }
+      out.box = make_box(slo, shi.cwiseMax(slo));
+      out.certified = true;
+      return out;
+    }
+  }
+  return out;  // floating-point box only, not certified
+}
+
+Orthant sign_orthant(const Eigen::VectorXd& theta) {
+  Orthant s(static_cast<std::size_t>(theta.size()));
+  for (Eigen::Index j = 0; j < theta.size(); ++j) s[static_cast<std::size_t>(j)] = theta[j] < 0 ? -1 : 1;
+  return s;
+}
+
+}  // namespace
+
+std::vector<Orthant> all_orthants(int p) {
+  if (p > 20) throw UnsupportedError("all_orthants: 2^" + std::to_string(p) + " orthants is too many");
+  std::vector<Orthant> out;
+  for (unsigned long mask = 0; mask < (1ul << p); ++mask) {
+    Orthant s(static_cast<std::size_t>(p));
+    for (int j = 0; j < p; ++j) s[static_cast<std::size_t>(j)] = (mask >> j) & 1 ? -1 : 1;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
+  const int p = fps.dimension();
+  if (fps.size() < p)
+    throw InputError("pui: " + std::to_string(fps.size()) + " samples for " + std::to_string(p) +
+                     " parameters: need at least as many samples as parameters");
+  PuiResult result;
+  result.lower_points.resize(p, p);
+  result.upper_points.resize(p, p);
+  bool any_feasible = false;
+  bool all_certified = true;
+
+  auto absorb = [&](const Orthant& s, const OrthantOutcome& oc) {
+    result.lp_solves += oc.lps;
+    result.orthants.push_back({s, oc.status, oc.box});
+    if (oc.status == OrthantStatus::unknown) all_certified = false;
+    if (oc.status != OrthantStatus::feasible) return;
+    all_certified = all_certified && (oc.certified || !options.safe);
+    for (int l = 0; l < p; ++l) {
+      if (!any_feasible || oc.box[l].lower() < result.box[l].lower())
+        result.lower_points.col(l) = oc.lower_points.col(l);
+      if (!any_feasible || oc.box[l].upper() > result.box[l].upper())
+        result.upper_points.col(l) = oc.upper_points.col(l);
+    }
+    result.box = any_feasible ? hull(result.box, oc.box) : oc.box;
+    any_feasible = true;
+  };
+
+  if (!fps.has_interval_regressors()) {
+    absorb({}, solve_orthant(fps, {}, options.safe));
+  } else if (options.orthants == OrthantSelection::all) {
+    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options.safe));
+  } else {
+    // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
+    // (theta_l = 0), the set may continue into the orthant across that face.
+    std::deque<Orthant> queue{sign_orthant(fps.least_squares())};
+    std::set<Orthant> seen{queue.front()};
+    while (!queue.empty()) {
+      Orthant s = queue.front();
+      queue.pop_front();
+      const OrthantOutcome oc = solve_orthant(fps, s, options.safe);
+      absorb(s, oc);
+      if (oc.status != OrthantStatus::feasible) continue;
+      double scale = 1;
+      for (int j = 0; j < p; ++j) {
+        if (std::isfinite(oc.float_lo[j])) scale = std::max(scale, std::abs(oc.float_lo[j]));
+        if (std::isfinite(oc.float_hi[j])) scale = std::max(scale, std::abs(oc.float_hi[j]));
+      }
+      const double tol = options.zero_tolerance * scale;
+      for (int j = 0; j < p; ++j) {
+        const bool touches = s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol;
+        if (!touches) continue;
+        Orthant next = s;
+        next[static_cast<std::size_t>(j)] = -next[static_cast<std::size_t>(j)];
+        if (seen.insert(next).second) queue.push_back(next);
+      }
+    }
+    // An empty starting orthant says nothing about the others: fall back to all of them.
+    if (!any_feasible && p <= 16) {
+      for (const Orthant& s : all_orthants(p))
+        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options.safe));
+    }
+  }
+
+  result.empty = !any_feasible;
+  if (result.empty) {
+    result.box = IntervalVector();
+    result.guaranteed = all_certified;
+    result.falsification = find_conflict(fps);
+    return result;
+  }
+  result.guaranteed = options.safe && all_certified;
+  result.central = midpoint(result.box);
+  return result;
+}
+
+Falsification find_conflict(const FeasibleParameterSet& fps) {
+  // min t  s.t.  Y_lo - t <= phi_c^T theta <= Y_hi + t  (central regressors): the rows that
+  // carry the optimal multipliers are a set of samples that cannot hold together.
+  const int p = fps.dimension();
+  const Eigen::MatrixXd A = midpoint(fps.regressors());
+  LinearProgram lp(p + 1);
+  lp.set_variable_bounds(p, 0, inf);
+  Eigen::VectorXd row(p + 1);
+  for (int t = 0; t < fps.size(); ++t) {
+    row.head(p) = A.row(t).transpose();
+    row[p] = 1;
+    lp.add_row(row, fps.outputs()[t].lower(), inf);
+    row[p] = -1;
+    lp.add_row(row, -inf, fps.outputs()[t].upper());
+  }
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(p + 1);
+  c[p] = 1;
+  lp.set_objective(c, Sense::minimize);
+  const LpSolution sol = lp.solve();
+  Falsification f;
+  if (sol.status != LpStatus::optimal || sol.objective <= 0) return f;
+  const Eigen::VectorXd theta = sol.x.head(p);
+  std::vector<std::pair<double, int>> support;
+  for (int t = 0; t < fps.size(); ++t) {
+    const double v = A.row(t).dot(theta);
+    const double viol = std::max({fps.outputs()[t].lower() - v, v - fps.outputs()[t].upper(), 0.0});
+    const bool active = std::abs(sol.row_dual[2 * t]) > 1e-12 || std::abs(sol.row_dual[2 * t + 1]) > 1e-12;
+    if (active) support.emplace_back(viol, t);
+  }
+  if (support.empty()) {
+    for (int t = 0; t < fps.size(); ++t) {
+      const double v = A.row(t).dot(theta);
+      support.emplace_back(std::max({fps.outputs()[t].lower() - v, v - fps.outputs()[t].upper(), 0.0}), t);
+    }
+    std::sort(support.rbegin(), support.rend());
+    support.resize(std::min<std::size_t>(support.size(), static_cast<std::size_t>(p + 1)));
+  }
+  std::sort(support.rbegin(), support.rend());
+  for (const auto& [v, t] : support) {
+    f.samples.push_back(t);
+    f.violation.push_back(v);
+  }
+  return f;
+}
+
+std::string Falsification::message() const {
+  std::ostringstream os;
+  os << "the data falsify the model: no parameter value satisfies all samples";
+  if (!samples.empty()) {
+    os << "; these samples conflict (sample: violation of the best compromise):";
+    for (std::size_t i = 0; i < samples.size(); ++i) os << ' ' << samples[i] << ": " << violation[i];
+  }
+  return os.str();
+}
+
+const char* to_string(OrthantStatus s) {
+  switch (s) {
+    case OrthantStatus::feasible: return "feasible";
+    case OrthantStatus::empty: return "empty";
+    default: return "unknown";
+  }
+}
+
+}  // namespace sets

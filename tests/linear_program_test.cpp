@@ -1,0 +1,167 @@
+// The LP/MILP layer: statuses, warm starts, and safe bounds checked against CGAL's exact LP solver.
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <CGAL/Gmpzf.h>
+#include <CGAL/QP_functions.h>
+#include <CGAL/QP_models.h>
+
+#include <cmath>
+
+#include "sets/error.hpp"
+#include "sets/linear_program.hpp"
+
+namespace {
+
+using sets::inf;
+using sets::LinearProgram;
+using sets::LpStatus;
+using sets::Sense;
+
+struct ExactLp {
+  bool feasible = false;
+  bool bounded = false;
+  CGAL::Quotient<CGAL::Gmpzf> value;
+};
+
+// The exact optimum of the same LP (with the same double data) from CGAL's QP solver.
+ExactLp exact_optimum(const Eigen::MatrixXd& A, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                      const Eigen::VectorXd& xlo, const Eigen::VectorXd& xhi, const Eigen::VectorXd& c,
+                      Sense sense) {
+  const int n = static_cast<int>(A.cols());
+  CGAL::Quadratic_program<double> qp(CGAL::SMALLER, false, 0, false, 0);
+  int row = 0;
+  for (int i = 0; i < A.rows(); ++i) {
+    for (int side = 0; side < 2; ++side) {
+      const double b = side == 0 ? hi[i] : lo[i];
+      if (std::isinf(b)) continue;
+      for (int j = 0; j < n; ++j) qp.set_a(j, row, side == 0 ? A(i, j) : -A(i, j));
+      qp.set_b(row, side == 0 ? b : -b);
+      ++row;
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    qp.set_l(j, std::isfinite(xlo[j]), std::isfinite(xlo[j]) ? xlo[j] : 0.0);
+    qp.set_u(j, std::isfinite(xhi[j]), std::isfinite(xhi[j]) ? xhi[j] : 0.0);
+    qp.set_c(j, sense == Sense::minimize ? c[j] : -c[j]);
+  }
+  const auto s = CGAL::solve_linear_program(qp, CGAL::Gmpzf());
+  ExactLp out;
+  out.feasible = !s.is_infeasible();
+  out.bounded = !s.is_unbounded();
+  if (out.feasible && out.bounded) out.value = s.objective_value();
+  if (sense == Sense::maximize) out.value = -out.value;
+  return out;
+}
+
+bool leq(double a, const CGAL::Quotient<CGAL::Gmpzf>& b) { return CGAL::Quotient<CGAL::Gmpzf>(a) <= b; }
+bool geq(double a, const CGAL::Quotient<CGAL::Gmpzf>& b) { return CGAL::Quotient<CGAL::Gmpzf>(a) >= b; }
+
+}  // namespace
+
+TEST(LinearProgram, SolvesSmallProblemAndWarmStarts) {
+  // max x + y  s.t.  x + 2y <= 4, 3x + y <= 6, x, y >= 0  -> optimum 2.8 at (1.6, 1.2)
+  // Finite variable bounds: the safe bound needs them wherever a reduced cost is not exactly 0.
+  LinearProgram lp(2);
+  lp.set_variable_bounds(0, 0, 10);
+  lp.set_variable_bounds(1, 0, 10);
+  lp.add_row(Eigen::Vector2d(1, 2), -inf, 4);
+  lp.add_row(Eigen::Vector2d(3, 1), -inf, 6);
+  lp.set_objective(Eigen::Vector2d(1, 1), Sense::maximize);
+  auto s = lp.solve();
+  ASSERT_EQ(s.status, LpStatus::optimal);
+  EXPECT_NEAR(s.objective, 2.8, 1e-12);
+  const double ub = lp.safe_bound(s);
+  EXPECT_GE(ub, 2.8);
+  EXPECT_LE(ub, 2.8 + 1e-12);
+  lp.set_objective_coordinate(0, Sense::maximize);
+  s = lp.solve();
+  EXPECT_NEAR(s.objective, 2.0, 1e-12);
+  lp.set_objective_coordinate(0, Sense::minimize);
+  s = lp.solve();
+  EXPECT_NEAR(s.objective, 0.0, 1e-12);
+}
+
+TEST(LinearProgram, ReportsInfeasibleAndUnbounded) {
+  LinearProgram lp(1);
+  lp.add_row(Eigen::VectorXd::Constant(1, 1.0), 2, inf);
+  lp.set_objective_coordinate(0, Sense::maximize);
+  EXPECT_EQ(lp.solve().status, LpStatus::unbounded);
+  EXPECT_EQ(lp.safe_bound(lp.solve()), inf);
+  lp.add_row(Eigen::VectorXd::Constant(1, 1.0), -inf, 1);
+  EXPECT_EQ(lp.solve().status, LpStatus::infeasible);
+  EXPECT_EQ(lp.solve_exact().status, LpStatus::infeasible);
+}
+
+TEST(LinearProgram, RejectsBadInput) {
+  LinearProgram lp(2);
+  EXPECT_THROW(lp.add_row(Eigen::Vector3d(1, 2, 3), 0, 1), sets::InputError);
+  EXPECT_THROW(lp.add_row(Eigen::Vector2d(1, NAN), 0, 1), sets::InputError);
+  EXPECT_THROW(lp.add_row(Eigen::Vector2d(1, 1), 2, 1), sets::InputError);
+  EXPECT_THROW(lp.set_variable_bounds(5, 0, 1), sets::InputError);
+}
+
+// Random LPs built to mislead floating point: rows scaled by 10^-6..10^6, pairs of nearly
+// parallel rows (near-degenerate vertices), a bounded box. The safe bound must enclose the
+// exact optimum (CGAL, exact arithmetic on the same doubles) every time.
+RC_GTEST_PROP(SafeBound, EnclosesExactOptimumOfIllConditionedLps, ()) {
+  const int n = *rc::gen::inRange(2, 5);
+  const int m = *rc::gen::inRange(n, 3 * n);
+  Eigen::MatrixXd A(m, n);
+  Eigen::VectorXd lo(m), hi(m);
+  for (int i = 0; i < m; ++i) {
+    const double scale = std::pow(10.0, *rc::gen::inRange(-6, 7));
+    for (int j = 0; j < n; ++j) A(i, j) = scale * (*rc::gen::inRange(-1000, 1001) / 97.0);
+    if (i > 0 && *rc::gen::inRange(0, 3) == 0) {
+      // nearly parallel to the previous row
+      A.row(i) = A.row(i - 1) * (1 + 1e-9 * *rc::gen::inRange(1, 100));
+    }
+    // Keep x = 0 feasible-ish: the row range contains a random point near 0.
+    const double centre = A.row(i).sum() * (*rc::gen::inRange(-100, 101) / 1000.0);
+    const double half = std::abs(A.row(i).sum()) * (*rc::gen::inRange(1, 100) / 100.0) + 1e-300;
+    lo[i] = centre - half;
+    hi[i] = *rc::gen::inRange(0, 4) == 0 ? inf : centre + half;
+  }
+  const Eigen::VectorXd xlo = Eigen::VectorXd::Constant(n, -10.0), xhi = Eigen::VectorXd::Constant(n, 10.0);
+  Eigen::VectorXd c(n);
+  for (int j = 0; j < n; ++j) c[j] = *rc::gen::inRange(-100, 101) / 7.0;
+  const Sense sense = *rc::gen::element(Sense::minimize, Sense::maximize);
+
+  LinearProgram lp(n);
+  for (int j = 0; j < n; ++j) lp.set_variable_bounds(j, xlo[j], xhi[j]);
+  lp.add_rows(A, lo, hi);
+  lp.set_objective(c, sense);
+  sets::LpSolution s;
+  try {
+    s = lp.solve();
+  } catch (const sets::NumericalError&) {
+    RC_DISCARD("GLPK reported a numerical failure (an error, not a wrong number)");
+  }
+  const ExactLp exact = exact_optimum(A, lo, hi, xlo, xhi, c, sense);
+  RC_PRE(exact.feasible);
+  RC_PRE(s.status == LpStatus::optimal);
+  const double bound = lp.safe_bound(s);
+  RC_TAG(std::isfinite(bound) ? "finite bound" : "no bound certified");
+  if (sense == Sense::minimize)
+    RC_ASSERT(leq(bound, exact.value));
+  else
+    RC_ASSERT(geq(bound, exact.value));
+}
+
+TEST(Milp, SolvesKnapsackWithGapAndBound) {
+  // max 5a + 4b + 3c  s.t.  2a + 3b + c <= 5, 4a + b + 2c <= 11, 3a + 4b + 2c <= 8, binary
+  LinearProgram lp(3);
+  for (int j = 0; j < 3; ++j) {
+    lp.set_variable_bounds(j, 0, 1);
+    lp.set_integer(j);
+  }
+  lp.add_row(Eigen::Vector3d(2, 3, 1), -inf, 5);
+  lp.add_row(Eigen::Vector3d(4, 1, 2), -inf, 11);
+  lp.add_row(Eigen::Vector3d(3, 4, 2), -inf, 8);
+  lp.set_objective(Eigen::Vector3d(5, 4, 3), Sense::maximize);
+  const auto s = lp.solve_milp({.time_limit_s = 10});
+  ASSERT_EQ(s.status, sets::MilpStatus::optimal);
+  EXPECT_NEAR(s.objective, 9.0, 1e-9);  // a = b = 1
+  EXPECT_NEAR(s.gap, 0.0, 1e-9);
+}
