@@ -206,7 +206,14 @@ int main(int argc, char** argv) {
       nlohmann::json j = {{"table", c.table}, {"label", c.label}, {"lambda0", c.lambda0}, {"kappa0", c.kappa0},
                           {"b0", c.b0}, {"noise_window_norm", c.noise}, {"shape", c.sine ? "sine" : "steps"},
                           {"true_bound", vec(true_bound)}};
-      std::cout << "  " << std::left << std::setw(40) << c.label << std::right << " true " << fmt(true_bound) << "\n";
+      // Window norm of nu = y_m - Upsilon - Xi Pi at the true Pi: noise plus linearization error.
+      const double true_nu = window(sets::stack_samples(data.y) - data.regression.upsilon -
+                                    data.regression.xi * sets::stack_samples(pi));
+      const double deviation = window(sets::stack_samples(data.y) - data.regression.upsilon);
+      j["true_residual_window_norm"] = true_nu;
+      j["output_deviation_window_norm"] = deviation;
+      std::cout << "  " << std::left << std::setw(40) << c.label << std::right << " true " << fmt(true_bound)
+                << "  ||y-Cz||_w " << std::setprecision(3) << deviation << "  ||nu(true pi)||_w " << true_nu << "\n";
       sets::TvBoundResult linf;
       if (do_linf || do_milp) {  // the MILP needs eps from (8)
         sets::LinfBoundOptions lo;
@@ -238,7 +245,7 @@ int main(int argc, char** argv) {
                      {"status", sets::to_string(m.status)}, {"objective", m.objective},
                      {"best_bound", m.best_bound}, {"changes", m.changes.size()}};
         std::cout << "      milp  bound " << fmt(m.bound) << "  rms " << fmt(rms, 3) << "  jumps "
-                  << m.changes.size() << "  gap " << std::setprecision(3) << m.gap << "  " << std::fixed
+                  << m.changes.size() << "  obj " << m.objective << "  gap " << std::setprecision(3) << m.gap << "  " << std::fixed
                   << std::setprecision(2) << m.seconds << " s (" << sets::to_string(m.status) << ")\n";
       }
       out["cases"].push_back(j);
