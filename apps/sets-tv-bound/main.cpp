@@ -151,10 +151,11 @@ int main(int argc, char** argv) {
   CLI::App app{"sets-tv-bound: bounds of time-varying parameter perturbations of the overhead crane "
                "(Salehpour & Johansson), l-inf LP and sparse-derivative MILP"};
   std::string method = "both", table = "all", json_path;
-  double time_limit = 60, seconds = 10, mu_rel = 0.02, box_rel = 4, gap = 1e-4;
+  double time_limit = 60, seconds = 6, mu_rel = 0.001, box_rel = 4, gap = 1e-4;
   unsigned seed = 1;
   std::string formulation = "single";
   bool warm = true, verbose = false;
+  int only = -1;
   app.add_option("--method", method, "linf, milp or both")->check(CLI::IsMember({"linf", "milp", "both"}));
   app.add_option("--table", table, "I, II, III or all")->check(CLI::IsMember({"I", "II", "III", "all"}));
   app.add_option("--time-limit", time_limit, "MILP time limit per case [s]")->check(CLI::PositiveNumber);
@@ -168,6 +169,7 @@ int main(int argc, char** argv) {
   app.add_option("--formulation", formulation, "MILP binaries: single (one per jump) or paper (two, eq. 12)")
       ->check(CLI::IsMember({"single", "paper"}));
   app.add_flag("!--no-warm-start", warm, "do not start the MILP from the l-inf solution");
+  app.add_option("--case", only, "run only this case of the selected table(s) (0-based)")->check(CLI::NonNegativeNumber);
   app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
   CLI11_PARSE(app, argc, argv);
   const bool do_linf = method != "milp", do_milp = method != "linf";
@@ -182,7 +184,14 @@ int main(int argc, char** argv) {
               << "seed " << seed << "\n"
               << "bounds rho = max_k |pi(k)| for (pi1, pi2, pi3) on (b, lambda, kappa); estimates, not guarantees\n\n";
     std::string current;
-    for (const Case& c : cases(table)) {
+    std::vector<Case> selected = cases(table);
+    if (only >= 0) {
+      if (only >= static_cast<int>(selected.size()))
+        throw sets::InputError("--case " + std::to_string(only) + ": the selection has " +
+                               std::to_string(selected.size()) + " cases");
+      selected = {selected[static_cast<std::size_t>(only)]};
+    }
+    for (const Case& c : selected) {
       if (c.table != current) {
         current = c.table;
         std::cout << "Table " << c.table << "\n";
