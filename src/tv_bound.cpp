@@ -54,7 +54,7 @@ void fill_result(const TvBoundData& data, const Eigen::VectorXd& pi_stacked, con
     for (int i = 0; i < q; ++i) {
       const double d = r.pi(k, i) - (k > 0 ? r.pi(k - 1, i) : 0.0);
       // A jump exactly at the threshold is free in (12)-(13): count only those above it.
-      if (std::abs(d) > mu[i] * (1 + 1e-6) + 1e-12) r.changes.push_back({k, i, d});
+      if (std::abs(d) > mu[i] * (1 + 1e-6) + 1e-9) r.changes.push_back({k, i, d});
     }
 }
 
