@@ -252,3 +252,27 @@ TEST(TvBound, BadInputIsRejectedWithClearErrors) {
   so.start.reset();
   EXPECT_THROW(sets::sparse_bound({reg, y, {w}}, so), sets::InputError);
 }
+
+#include "../apps/sets-tv-bound/crane.hpp"
+
+TEST(TvBound, CraneModelMatchesEquation15) {
+  // simulate() of the (A, B, C, P, D, Q) form equals the Euler recursion (15) with
+  // b = b0 + pi1, lambda = lambda0 + pi2, kappa = kappa0 + pi3.
+  const double l0 = 3.3, k0 = 0.25, b0 = 2, h = sets::crane::kStep;
+  const auto m = sets::crane::model(l0, k0, b0);
+  const int N = 50;
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::MatrixXd u(N, 1), pi(N, 3);
+  for (int k = 0; k < N; ++k) u(k, 0) = U(rng), pi.row(k) << 0.2 * U(rng), U(rng), 0.5 * U(rng);
+  const Eigen::Vector3d x0(0.1, -0.2, 0.3);
+  const auto s = sets::simulate(m, x0, u, pi);
+  Eigen::Vector3d x = x0;
+  for (int k = 0; k < N; ++k) {
+    const double b = b0 + pi(k, 0), lam = l0 + pi(k, 1), kap = k0 + pi(k, 2);
+    Eigen::Matrix3d A;
+    A << 1, h, 0, -h * lam, 1 - h * kap, h * lam, 0, 0, 1;
+    x = A * x + Eigen::Vector3d(0, 0, h * b) * u(k, 0);
+    EXPECT_LT((s.x.row(k + 1).transpose() - x).cwiseAbs().maxCoeff(), 1e-12) << "sample " << k + 1;
+  }
+}

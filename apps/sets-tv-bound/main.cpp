@@ -18,12 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "crane.hpp"
 #include "sets/error.hpp"
 #include "sets/tv_bound.hpp"
 
 namespace {
 
-constexpr double kStep = 0.05;  // sampling interval h [s]
+using sets::crane::kStep;
 
 struct Case {
   std::string table;  // "I", "II", "III" (the sinusoid of Fig. 7 is listed under table I as "I-sine")
@@ -33,25 +34,6 @@ struct Case {
   double noise = 0.1;                        // window norm of the white output noise
   bool sine = false;
 };
-
-// Crane (15) as model (1): pi1 enters through Q (third row, times u), pi2 and pi3 through P
-// (second row, times x); D = 0. pi (x) x = [pi1 x; pi2 x; pi3 x], pi (x) u = [pi1 u; pi2 u; pi3 u].
-sets::TimeVaryingModel crane(double lambda0, double kappa0, double b0) {
-  const double h = kStep;
-  sets::TimeVaryingModel m;
-  m.A.resize(3, 3);
-  m.A << 1, h, 0, -h * lambda0, 1 - h * kappa0, h * lambda0, 0, 0, 1;
-  m.B = Eigen::Vector3d(0, 0, h * b0);
-  m.C = Eigen::RowVector3d(1, 0, 0);
-  m.D = Eigen::MatrixXd::Zero(3, 3);
-  m.P = Eigen::MatrixXd::Zero(3, 9);
-  m.P(1, 3) = -h;  // pi2 * (-h x_p)
-  m.P(1, 5) = h;   // pi2 * ( h x_s)
-  m.P(1, 7) = -h;  // pi3 * (-h x_p')
-  m.Q = Eigen::MatrixXd::Zero(3, 3);
-  m.Q(2, 0) = h;   // pi1 * h u
-  return m;
-}
 
 // Input: a square wave of amplitude 1 and period 4 s (the paper's u_c is not given).
 Eigen::MatrixXd input(int N) {
@@ -156,6 +138,8 @@ int main(int argc, char** argv) {
   std::string formulation = "single";
   bool warm = true, verbose = false;
   int only = -1;
+  double scale = 1;
+  std::string milp_eps = "linf";
   app.add_option("--method", method, "linf, milp or both")->check(CLI::IsMember({"linf", "milp", "both"}));
   app.add_option("--table", table, "I, II, III or all")->check(CLI::IsMember({"I", "II", "III", "all"}));
   app.add_option("--time-limit", time_limit, "MILP time limit per case [s]")->check(CLI::PositiveNumber);
@@ -170,6 +154,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"single", "paper"}));
   app.add_flag("!--no-warm-start", warm, "do not start the MILP from the l-inf solution");
   app.add_option("--case", only, "run only this case of the selected table(s) (0-based)")->check(CLI::NonNegativeNumber);
+  app.add_option("--scale", scale,
+                 "multiply every perturbation amplitude and noise level by this (1 = the paper's; smaller "
+                 "values keep the biaffine approximation accurate)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--milp-eps", milp_eps,
+                 "eps of the MILP: linf (from (8), the paper's) or oracle (the window norm of "
+                 "y_m - Upsilon - Xi Pi at the true Pi; a diagnostic only)")
+      ->check(CLI::IsMember({"linf", "oracle"}));
   app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
   CLI11_PARSE(app, argc, argv);
   const bool do_linf = method != "milp", do_milp = method != "linf";
@@ -178,7 +170,8 @@ int main(int argc, char** argv) {
   try {
     nlohmann::json out;
     out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"mu_rel", mu_rel},
-                       {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm}};
+                       {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
+                       {"scale", scale}, {"milp_eps", milp_eps}};
     out["cases"] = nlohmann::json::array();
     std::cout << "sets-tv-bound: overhead crane, N = " << N << " samples (h = 0.05 s), window 1/35 on 36 samples, "
               << "seed " << seed << "\n"
@@ -191,12 +184,16 @@ int main(int argc, char** argv) {
                                std::to_string(selected.size()) + " cases");
       selected = {selected[static_cast<std::size_t>(only)]};
     }
+    for (Case& c : selected) {
+      c.amplitude *= scale;
+      c.noise *= scale;
+    }
     for (const Case& c : selected) {
       if (c.table != current) {
         current = c.table;
         std::cout << "Table " << c.table << "\n";
       }
-      const sets::TimeVaryingModel model = crane(c.lambda0, c.kappa0, c.b0);
+      const sets::TimeVaryingModel model = sets::crane::model(c.lambda0, c.kappa0, c.b0);
       const Eigen::MatrixXd u = input(N), pi = perturbation(c, N);
       const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(3);
       const auto sim = sets::simulate(model, x0, u, pi);
@@ -243,7 +240,7 @@ int main(int argc, char** argv) {
         so.F = F;
         so.mu = mu_rel * nominal;
         so.max_abs = box_rel * nominal;
-        so.epsilon = linf.epsilon;
+        so.epsilon = milp_eps == "oracle" ? Eigen::VectorXd::Constant(1, true_nu) : linf.epsilon;
         so.formulation =
             formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
         so.milp = {time_limit, gap, verbose};
