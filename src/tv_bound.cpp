@@ -151,9 +151,10 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   if (o.epsilon.size() != l || !o.epsilon.allFinite() || (o.epsilon.array() < 0).any())
     throw InputError("sparse_bound: epsilon needs one non-negative window-norm bound per output (" +
                      std::to_string(l) + "), e.g. linf_bound(...).epsilon");
-  if (o.start && (o.start->rows() != N || o.start->cols() != q))
-    throw InputError("sparse_bound: the start trajectory is " + std::to_string(o.start->rows()) + " x " +
-                     std::to_string(o.start->cols()) + ", expected " + std::to_string(N) + " x " + std::to_string(q));
+  const bool has_start = o.start.size() > 0;
+  if (has_start && (o.start.rows() != N || o.start.cols() != q))
+    throw InputError("sparse_bound: the start trajectory is " + std::to_string(o.start.rows()) + " x " +
+                     std::to_string(o.start.cols()) + ", expected " + std::to_string(N) + " x " + std::to_string(q));
   const WindowNormBall ball = data.ball();
   const Eigen::VectorXd offset = stack_samples(data.y) - data.regression.upsilon;
   const Eigen::VectorXd eps = o.epsilon * (1 + o.epsilon_slack);
@@ -198,14 +199,14 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   lp.set_objective(c, Sense::minimize);
 
   std::optional<Eigen::VectorXd> start;
-  if (o.start) {
+  if (has_start) {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(lp.num_variables());
-    const Eigen::VectorXd pi = stack_samples(*o.start);
+    const Eigen::VectorXd pi = stack_samples(o.start);
     x.head(pi.size()) = pi;
-    x[tF] = ((*o.start) * F.asDiagonal()).cwiseAbs().maxCoeff();
+    x[tF] = (o.start * F.asDiagonal()).cwiseAbs().maxCoeff();
     for (int k = k0; k < N; ++k)
       for (int i = 0; i < q; ++i) {
-        const double d = (*o.start)(k, i) - (k > 0 ? (*o.start)(k - 1, i) : 0.0);
+        const double d = o.start(k, i) - (k > 0 ? o.start(k - 1, i) : 0.0);
         if (std::abs(d) <= o.mu[i]) continue;
         if (per == 1) x[bin(k, i, 0)] = 1;
         else x[bin(k, i, d > 0 ? 0 : 1)] = 1;

@@ -249,7 +249,7 @@ TEST(TvBound, BadInputIsRejectedWithClearErrors) {
   so.start = Eigen::MatrixXd::Zero(9, 3);  // N = 10
   EXPECT_THROW(sets::sparse_bound({reg, y, {w}}, so), sets::InputError);
   so.max_abs[1] = sets::inf;
-  so.start.reset();
+  so.start.resize(0, 0);
   EXPECT_THROW(sets::sparse_bound({reg, y, {w}}, so), sets::InputError);
 }
 

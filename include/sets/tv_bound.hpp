@@ -10,7 +10,6 @@
 
 #include <Eigen/Core>
 
-#include <optional>
 #include <vector>
 
 #include "sets/linear_program.hpp"
@@ -89,8 +88,8 @@ struct SparseBoundOptions {
   SparseFormulation formulation = SparseFormulation::single_binary;
   MilpOptions milp{60, 1e-4, false};
   /// Warm start: a trajectory (N x q), e.g. the l-inf estimate; T, the binaries and the peak are
-  /// completed from it. Ignored by GLPK if infeasible.
-  std::optional<Eigen::MatrixXd> start;
+  /// completed from it. Empty = none. Ignored by GLPK if infeasible.
+  Eigen::MatrixXd start;
 };
 
 /// Equation (14): min 1^T Sigma + ||(I (x) F) Pi||_inf s.t. (13) and the window-norm ball with
