@@ -259,13 +259,17 @@ int LpvModelStructure::num_parameters() const {
 int LpvModelStructure::first_regression() const { return std::max(na(), std::max(nb(), 0)); }
 
 std::vector<std::string> LpvModelStructure::parameter_names() const {
+  // (ostringstream rather than "a" + std::to_string(..): GCC 12 warns falsely on the latter.)
   std::vector<std::string> names;
+  auto add = [&](char c, std::size_t i, std::size_t k, const BasisFunction& f) {
+    std::ostringstream os;
+    os << c << i << ',' << k << '[' << f.name(alpha) << ']';
+    names.push_back(os.str());
+  };
   for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t k = 0; k < a[i].size(); ++k)
-      names.push_back("a" + std::to_string(i + 1) + "," + std::to_string(k + 1) + "[" + a[i][k].name(alpha) + "]");
+    for (std::size_t k = 0; k < a[i].size(); ++k) add('a', i + 1, k + 1, a[i][k]);
   for (std::size_t j = 0; j < b.size(); ++j)
-    for (std::size_t h = 0; h < b[j].size(); ++h)
-      names.push_back("b" + std::to_string(j) + "," + std::to_string(h + 1) + "[" + b[j][h].name(alpha) + "]");
+    for (std::size_t h = 0; h < b[j].size(); ++h) add('b', j, h + 1, b[j][h]);
   return names;
 }
 

@@ -144,7 +144,10 @@ std::string polynomial_name(const std::vector<double>& c) {
     char coeff[32];
     std::snprintf(coeff, sizeof coeff, "%g", c[k]);
     std::string term = k == 0 ? coeff : (c[k] == 1 ? std::string() : std::string(coeff) + "*") + "x";
-    if (k >= 2) term += "^" + std::to_string(k);
+    if (k >= 2) {
+      term += '^';
+      term += std::to_string(k);
+    }
     if (!s.empty()) s += " + ";
     s += term;
   }
