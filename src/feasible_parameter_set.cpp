@@ -59,7 +59,19 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  for (Eigen::Index t = 0; t < Phi.rows(); ++t) f.add_strip(IntervalVector(Phi.row(t).transpose()), Y[t]);
+  // Same checks as add_strip, but one allocation (add_strip's row-by-row growth is quadratic).
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+    const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
+    for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+      if (!std::isfinite(Phi(t, j).lower()) || !std::isfinite(Phi(t, j).upper()))
+        throw InputError(where + ", regressor entry " + std::to_string(j) + " is not finite");
+      if (Phi(t, j).lower() != Phi(t, j).upper()) f.eiv_ = true;
+    }
+    if (!std::isfinite(Y[t].lower()) || !std::isfinite(Y[t].upper()))
+      throw InputError(where + ", output bound is not finite");
+  }
+  f.Phi_ = Phi;
+  f.Y_ = Y;
   return f;
 }
 
@@ -241,7 +253,7 @@ class OrthantLp {
       const double tol = 1e-9 * (1 + std::abs(yhi_[t]) + std::abs(ylo_[t]));
       if (v > tol) violated.emplace_back(v, static_cast<int>(t));
     }
-    const std::size_t k = std::min<std::size_t>(violated.size(), 20 + 2 * static_cast<std::size_t>(x.size()));
+    const std::size_t k = std::min<std::size_t>(violated.size(), 60 + 4 * static_cast<std::size_t>(x.size()));
     std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(k), violated.end(),
                       [](const auto& u, const auto& v) { return u.first > v.first; });
     for (std::size_t i = 0; i < k; ++i) add_sample(violated[i].second);
@@ -278,10 +290,11 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   out.lower_points.resize(p, p);
   out.upper_points.resize(p, p);
   // Phase 1: floating-point PUIs; the 2p problems share one constraint matrix and warm-start.
+  std::vector<LpSolution> phase1(static_cast<std::size_t>(2 * p));
   for (int l = 0; l < p; ++l) {
     for (Sense sense : {Sense::minimize, Sense::maximize}) {
       o.lp().set_objective_coordinate(l, sense);
-      const LpSolution sol = o.solve(out.lps);
+      const LpSolution& sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))] = o.solve(out.lps);
       if (sol.status == LpStatus::infeasible) {
         // Certify emptiness with exact rational arithmetic before calling the orthant empty.
         // (A working set is a relaxation: if it is empty, so is the full set.)
@@ -325,8 +338,22 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
         // Over the working set only: a relaxation, so the safe bound holds for the full set,
         // and phase 1 made the relaxation's optimum the full one.
         o.lp().set_objective_coordinate(l, sense);
-        const LpSolution sol = o.lp().solve();
-        ++out.lps;
+        // Any multipliers give a valid bound: first try phase 1's duals (zero for rows added
+        // later) with the box X, which saves a re-solve whenever they certify the end.
+        LpSolution sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))];
+        if (sol.status == LpStatus::optimal) {
+          const Eigen::Index m_before = sol.row_dual.size();
+          sol.row_dual.conservativeResize(o.lp().num_rows());
+          sol.row_dual.tail(o.lp().num_rows() - m_before).setZero();
+          const double b = o.lp().safe_bound(sol);
+          const bool inside = sense == Sense::minimize ? (b > xlo[l] || is_zero_face(s, l, true))
+                                                       : (b < xhi[l] || is_zero_face(s, l, false));
+          if (!inside) sol.status = LpStatus::infeasible;  // fall back to a re-solve below
+        }
+        if (sol.status != LpStatus::optimal) {
+          sol = o.lp().solve();
+          ++out.lps;
+        }
         if (sol.status != LpStatus::optimal) {
           ok = false;
           break;

@@ -238,13 +238,13 @@ TEST(LpvPui, BadInputIsReportedWithSampleAndField) {
 }
 
 TEST(LpvPui, DataThatNoThetaExplainsAreReportedWithTheirSamples) {
-  // Section IV's system, 60 samples, bounds 1e-3; sample 30's output is off by 0.5.
+  // Section IV's system, 30 samples, bounds 1e-3; sample 15's output is off by 0.5.
   const auto m = LpvModelStructure::cerone_regruto_example();
   Eigen::VectorXd theta(6);
   theta << 0.5, -0.2, 0.3, 0.1, 1.0, 0.2;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> U(-1, 1);
-  const int T = 60;
+  const int T = 30;
   Eigen::VectorXd u(T);
   Eigen::MatrixXd lambda(T, 1);
   for (int t = 0; t < T; ++t) {
@@ -259,13 +259,13 @@ TEST(LpvPui, DataThatNoThetaExplainsAreReportedWithTheirSamples) {
   d.delta_eta = Eigen::VectorXd::Constant(1, 1e-3);
   d.delta_eps = Eigen::MatrixXd::Constant(1, 1, 1e-3);
   ASSERT_FALSE(sets::lpv_pui(m, d).pui.empty);  // consistent before the fault
-  d.y[30] += 0.5;
+  d.y[15] += 0.5;
   const auto r = sets::lpv_pui(m, d);
   ASSERT_TRUE(r.pui.empty);
   ASSERT_FALSE(r.falsifying_times.empty());
-  // y_30 is the output of regression 30 and a regressor of 31 and 32.
+  // y_15 is the output of regression 15 and a regressor of 16 and 17.
   bool named = false;
-  for (int t : r.falsifying_times) named = named || (t >= 30 && t <= 32);
+  for (int t : r.falsifying_times) named = named || (t >= 15 && t <= 17);
   EXPECT_TRUE(named);
   EXPECT_NE(r.pui.falsification.message().find("falsify"), std::string::npos);
 }
