@@ -236,7 +236,7 @@ HPolytope remove_redundant(const HPolytope& P) {
       lp.set_row_bounds(static_cast<int>(k), -inf, bi);
       continue;  // the others alone are empty: keep the row (emptiness is preserved either way)
     }
-    if (sol.status == LpStatus::optimal && sol.objective <= bi + 1e-9 * (1 + std::abs(bi))) {
+    if (sol.status == LpStatus::optimal && sol.objective <= bi) {  // no tolerance: keeping is safe
       keep[k] = false;
       lp.set_row_bounds(static_cast<int>(k), -inf, inf);  // dropped from later tests too
     } else {

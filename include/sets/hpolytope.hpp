@@ -63,8 +63,8 @@ ChebyshevBall chebyshev_ball(const HPolytope& P);
 
 /// P ∩ Q (rows stacked; exact).
 HPolytope intersect(const HPolytope& P, const HPolytope& Q);
-/// Removes rows that the LP finds redundant (to a relative 1e-9), zero rows with b >= 0, and
-/// duplicates. Removing rows can only enlarge the set, so the result always contains P.
+/// Removes rows that the LP finds redundant (its optimum, in floating point, does not exceed
+/// b_i), zero rows with b >= 0, and exact duplicates. Removing rows can only enlarge the set, so the result always contains P.
 HPolytope remove_redundant(const HPolytope& P);
 /// Image A P for square invertible A: normals A^{-T} a_i (rounded) with certified offsets, so
 /// the result contains A P and equals it up to rounding. Throws UnsupportedError for singular
