@@ -27,7 +27,7 @@ namespace {
 using sets::crane::kStep;
 
 struct Case {
-  std::string table;  // "I", "II", "III" (the sinusoid of Fig. 7 is listed under table I as "I-sine")
+  std::string table;  // "I", "II", "III" (the sinusoid of Fig. 7 is listed under table I, shape "sine")
   std::string label;
   double lambda0 = 3.3, kappa0 = 0.25, b0 = 2.0;
   Eigen::Vector3d amplitude{0.2, 1.0, 0.5};  // true bound of (pi1, pi2, pi3) on (b, lambda, kappa)
@@ -80,7 +80,7 @@ std::vector<Case> cases(const std::string& which) {
       out.push_back(c);
     }
     Case c;
-    c.table = "I-sine";
+    c.table = "I";
     c.sine = true;
     c.label = "sinusoid (Fig. 7), A = [0.2, 1, 0.5]";
     out.push_back(c);
@@ -163,7 +163,11 @@ int main(int argc, char** argv) {
                  "y_m - Upsilon - Xi Pi at the true Pi; a diagnostic only)")
       ->check(CLI::IsMember({"linf", "oracle"}));
   app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;  // usage errors exit 1 (docs/contributing.md)
+  }
   const bool do_linf = method != "milp", do_milp = method != "linf";
   const int N = static_cast<int>(std::lround(seconds / kStep));
 
@@ -173,10 +177,6 @@ int main(int argc, char** argv) {
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
                        {"scale", scale}, {"milp_eps", milp_eps}};
     out["cases"] = nlohmann::json::array();
-    std::cout << "sets-tv-bound: overhead crane, N = " << N << " samples (h = 0.05 s), window 1/35 on 36 samples, "
-              << "seed " << seed << "\n"
-              << "bounds rho = max_k |pi(k)| for (pi1, pi2, pi3) on (b, lambda, kappa); estimates, not guarantees\n\n";
-    std::string current;
     std::vector<Case> selected = cases(table);
     if (only >= 0) {
       if (only >= static_cast<int>(selected.size()))
@@ -184,6 +184,10 @@ int main(int argc, char** argv) {
                                std::to_string(selected.size()) + " cases");
       selected = {selected[static_cast<std::size_t>(only)]};
     }
+    std::cout << "sets-tv-bound: overhead crane, N = " << N << " samples (h = 0.05 s), window 1/35 on 36 samples, "
+              << "seed " << seed << "\n"
+              << "bounds rho = max_k |pi(k)| for (pi1, pi2, pi3) on (b, lambda, kappa); estimates, not guarantees\n\n";
+    std::string current;
     for (Case& c : selected) {
       c.amplitude *= scale;
       c.noise *= scale;
