@@ -261,6 +261,7 @@ CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eig
   const int eq = n + ny;
   CanonicalRegression r;
   r.equations = eq;
+  r.state_equations = n;
   r.Psi = Eigen::MatrixXd::Zero((K - 1) * eq, st.parameter_count());
   r.y.resize((K - 1) * eq);
   r.equation.resize((K - 1) * eq);

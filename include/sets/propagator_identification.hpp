@@ -101,6 +101,7 @@ struct CanonicalRegression {
   std::vector<int> equation;  // per row
   std::vector<int> sample;    // per row: the time t of x_hat(t), u(t), y(t)
   int equations = 0;          // nx + ny
+  int state_equations = 0;    // nx
 };
 
 /// Builds the regression from a state sequence: states.col(k) = x(first + k), k = 0..K-1;

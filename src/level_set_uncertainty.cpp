@@ -1,0 +1,118 @@
+#include "sets/level_set_uncertainty.hpp"
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sets/error.hpp"
+
+namespace sets {
+namespace {
+
+bool selected(const CanonicalRegression& r, int row, ResidualSelection s) {
+  const bool state = r.equation[row] < r.state_equations;
+  switch (s) {
+    case ResidualSelection::all: return true;
+    case ResidualSelection::outputs: return !state;
+    case ResidualSelection::states: return state;
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* to_string(ResidualSelection s) {
+  switch (s) {
+    case ResidualSelection::all: return "all";
+    case ResidualSelection::outputs: return "outputs";
+    case ResidualSelection::states: return "states";
+  }
+  return "?";
+}
+
+const char* to_string(ResidualNorm n) {
+  return n == ResidualNorm::entrywise ? "entrywise" : "sample-euclidean";
+}
+
+double residual_bound(const CanonicalRegression& r, const Eigen::VectorXd& eps, const LevelSetOptions& o,
+                      int* attaining_row) {
+  if (eps.size() != r.y.size()) throw InputError("residual_bound: residual vector has the wrong length");
+  double ell = -1;
+  int arg = -1;
+  if (o.norm == ResidualNorm::entrywise) {
+    for (int k = 0; k < eps.size(); ++k)
+      if (selected(r, k, o.residuals) && std::abs(eps[k]) > ell) {
+        ell = std::abs(eps[k]);
+        arg = k;
+      }
+  } else {
+    // Rows of one sample are consecutive (canonical_regression writes them so).
+    for (int k = 0; k < eps.size();) {
+      int end = k;
+      double s2 = 0;
+      bool any = false;
+      while (end < eps.size() && r.sample[end] == r.sample[k]) {
+        if (selected(r, end, o.residuals)) {
+          s2 += eps[end] * eps[end];
+          any = true;
+        }
+        ++end;
+      }
+      if (any && std::sqrt(s2) > ell) {
+        ell = std::sqrt(s2);
+        arg = k;
+      }
+      k = end;
+    }
+  }
+  if (arg < 0) throw InputError("residual_bound: no residual row is selected");
+  if (attaining_row) *attaining_row = arg;
+  return ell;
+}
+
+LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOptions& o) {
+  const int m = static_cast<int>(r.Psi.cols());
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(r.Psi);
+  qr.setThreshold(1e-10);
+  if (qr.rank() < m)
+    throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(qr.rank()) + " < " +
+                     std::to_string(m) + "); the parameters are not identifiable");
+  LevelSetDomain d;
+  d.theta = qr.solve(r.y);
+  d.R = r.Psi.transpose() * r.Psi;
+  d.residuals = r.y - r.Psi * d.theta;
+  d.j_min = 0.5 * d.residuals.squaredNorm();
+  d.ell = residual_bound(r, d.residuals, o, &d.ell_row);
+  d.j_d = d.j_min + d.ell * d.ell;
+  // 1/2 dtheta^T R dtheta <= l^2  <=>  dtheta^T R dtheta <= 2 l^2.
+  d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, 2.0 * d.ell * d.ell);
+  return d;
+}
+
+FeasibleParameterSet regression_fps(const CanonicalRegression& r, double bound, std::vector<int>* falsified) {
+  if (!(bound >= 0) || !std::isfinite(bound)) throw InputError("regression_fps: the bound must be finite and >= 0");
+  FeasibleParameterSet fps(static_cast<int>(r.Psi.cols()));
+  if (falsified) falsified->clear();
+  for (int k = 0; k < r.Psi.rows(); ++k) {
+    if (r.Psi.row(k).isZero(0)) {
+      if (falsified && std::abs(r.y[k]) > bound) falsified->push_back(k);
+      continue;
+    }
+    fps.add_strip(r.Psi.row(k).transpose(), r.y[k], bound);
+  }
+  return fps;
+}
+
+PairView pair_view(const Ellipsoid& E, int i, int j) {
+  const int n = E.dimension();
+  if (i < 0 || j < 0 || i >= n || j >= n || i == j)
+    throw InputError("pair_view: need two different parameter indices in 0.." + std::to_string(n - 1));
+  Eigen::VectorXd rest(n - 2);
+  for (int k = 0, q = 0; k < n; ++k)
+    if (k != i && k != j) rest[q++] = E.center()[k];
+  // slice() orders the kept coordinates as listed and takes the others in increasing order.
+  return {project(E, {i, j}), slice(E, {i, j}, rest)};
+}
+
+}  // namespace sets
