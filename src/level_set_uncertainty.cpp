@@ -92,16 +92,23 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
 
 FeasibleParameterSet regression_fps(const CanonicalRegression& r, double bound, std::vector<int>* falsified) {
   if (!(bound >= 0) || !std::isfinite(bound)) throw InputError("regression_fps: the bound must be finite and >= 0");
-  FeasibleParameterSet fps(static_cast<int>(r.Psi.cols()));
+  // Collect the rows first: FeasibleParameterSet::add_strip grows its storage row by row.
+  std::vector<int> keep;
   if (falsified) falsified->clear();
   for (int k = 0; k < r.Psi.rows(); ++k) {
     if (r.Psi.row(k).isZero(0)) {
       if (falsified && std::abs(r.y[k]) > bound) falsified->push_back(k);
       continue;
     }
-    fps.add_strip(r.Psi.row(k).transpose(), r.y[k], bound);
+    keep.push_back(k);
   }
-  return fps;
+  Eigen::MatrixXd Phi(keep.size(), r.Psi.cols());
+  Eigen::VectorXd y(keep.size());
+  for (std::size_t q = 0; q < keep.size(); ++q) {
+    Phi.row(q) = r.Psi.row(keep[q]);
+    y[q] = r.y[keep[q]];
+  }
+  return FeasibleParameterSet::from_data(Phi, y, Eigen::VectorXd::Constant(keep.size(), bound));
 }
 
 PairView pair_view(const Ellipsoid& E, int i, int j) {

@@ -38,7 +38,7 @@ struct Settings {
   std::string rows;                  // "1:0,1:1,1:2" = output:lag (1-based output)
   std::string selection = "output-major";
   sets::LevelSetOptions level;
-  int fps_pui_runs = -1;             // -1: all runs
+  int fps_pui_runs = 100;            // PUIs by LP in the first K runs (-1: all)
   std::string json_path;
   // real data
   std::string data, inputs, outputs;
