@@ -32,7 +32,12 @@ const char* to_string(ResidualSelection s) {
 }
 
 const char* to_string(ResidualNorm n) {
-  return n == ResidualNorm::entrywise ? "entrywise" : "sample-euclidean";
+  switch (n) {
+    case ResidualNorm::entrywise: return "entrywise";
+    case ResidualNorm::sample_euclidean: return "sample-euclidean";
+    case ResidualNorm::per_equation: return "per-equation";
+  }
+  return "?";
 }
 
 double residual_bound(const CanonicalRegression& r, const Eigen::VectorXd& eps, const LevelSetOptions& o,
@@ -40,7 +45,13 @@ double residual_bound(const CanonicalRegression& r, const Eigen::VectorXd& eps, 
   if (eps.size() != r.y.size()) throw InputError("residual_bound: residual vector has the wrong length");
   double ell = -1;
   int arg = -1;
-  if (o.norm == ResidualNorm::entrywise) {
+  if (o.norm == ResidualNorm::per_equation) {
+    for (int k = 0; k < eps.size(); ++k)
+      if (std::abs(eps[k]) > ell) {
+        ell = std::abs(eps[k]);
+        arg = k;
+      }
+  } else if (o.norm == ResidualNorm::entrywise) {
     for (int k = 0; k < eps.size(); ++k)
       if (selected(r, k, o.residuals) && std::abs(eps[k]) > ell) {
         ell = std::abs(eps[k]);
@@ -79,36 +90,66 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
     throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(qr.rank()) + " < " +
                      std::to_string(m) + "); the parameters are not identifiable");
   LevelSetDomain d;
-  d.theta = qr.solve(r.y);
-  d.R = r.Psi.transpose() * r.Psi;
+  if (o.norm != ResidualNorm::per_equation) {
+    d.theta = qr.solve(r.y);
+    d.R = r.Psi.transpose() * r.Psi;
+    d.residuals = r.y - r.Psi * d.theta;
+    d.j_min = 0.5 * d.residuals.squaredNorm();
+    d.ell = residual_bound(r, d.residuals, o, &d.ell_row);
+    d.ell_per_equation = Eigen::VectorXd::Constant(r.equations, d.ell);
+    d.j_d = d.j_min + d.ell * d.ell;
+    // 1/2 dtheta^T R dtheta <= l^2  <=>  dtheta^T R dtheta <= 2 l^2.
+    d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, 2.0 * d.ell * d.ell);
+    return d;
+  }
+  // Per equation: l_e from the unweighted fit, then the normalised (weighted) criterion.
+  const Eigen::VectorXd eps0 = r.y - r.Psi * qr.solve(r.y);
+  d.ell_per_equation = Eigen::VectorXd::Zero(r.equations);
+  for (int k = 0; k < eps0.size(); ++k)
+    d.ell_per_equation[r.equation[k]] = std::max(d.ell_per_equation[r.equation[k]], std::abs(eps0[k]));
+  d.ell = residual_bound(r, eps0, o, &d.ell_row);
+  const double floor = 1e-12 * d.ell;
+  Eigen::VectorXd w(eps0.size());
+  for (int k = 0; k < eps0.size(); ++k) w[k] = 1.0 / std::max(d.ell_per_equation[r.equation[k]], floor);
+  const Eigen::MatrixXd Pw = w.asDiagonal() * r.Psi;
+  const Eigen::VectorXd yw = w.asDiagonal() * r.y;
+  d.theta = Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(Pw).solve(yw);
+  d.R = Pw.transpose() * Pw;
   d.residuals = r.y - r.Psi * d.theta;
-  d.j_min = 0.5 * d.residuals.squaredNorm();
-  d.ell = residual_bound(r, d.residuals, o, &d.ell_row);
-  d.j_d = d.j_min + d.ell * d.ell;
-  // 1/2 dtheta^T R dtheta <= l^2  <=>  dtheta^T R dtheta <= 2 l^2.
-  d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, 2.0 * d.ell * d.ell);
+  d.j_min = 0.5 * (yw - Pw * d.theta).squaredNorm();
+  d.j_d = d.j_min + 1.0;
+  d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, 2.0);
   return d;
 }
 
 FeasibleParameterSet regression_fps(const CanonicalRegression& r, double bound, std::vector<int>* falsified) {
-  if (!(bound >= 0) || !std::isfinite(bound)) throw InputError("regression_fps: the bound must be finite and >= 0");
+  return regression_fps(r, Eigen::VectorXd::Constant(r.equations, bound), falsified);
+}
+
+FeasibleParameterSet regression_fps(const CanonicalRegression& r, const Eigen::VectorXd& bounds,
+                                    std::vector<int>* falsified) {
+  if (bounds.size() != r.equations) throw InputError("regression_fps: one bound per equation is needed");
+  for (int e = 0; e < bounds.size(); ++e)
+    if (!(bounds[e] >= 0) || !std::isfinite(bounds[e]))
+      throw InputError("regression_fps: the bound of equation " + std::to_string(e) + " must be finite and >= 0");
   // Collect the rows first: FeasibleParameterSet::add_strip grows its storage row by row.
   std::vector<int> keep;
   if (falsified) falsified->clear();
   for (int k = 0; k < r.Psi.rows(); ++k) {
     if (r.Psi.row(k).isZero(0)) {
-      if (falsified && std::abs(r.y[k]) > bound) falsified->push_back(k);
+      if (falsified && std::abs(r.y[k]) > bounds[r.equation[k]]) falsified->push_back(k);
       continue;
     }
     keep.push_back(k);
   }
   Eigen::MatrixXd Phi(keep.size(), r.Psi.cols());
-  Eigen::VectorXd y(keep.size());
+  Eigen::VectorXd y(keep.size()), delta(keep.size());
   for (std::size_t q = 0; q < keep.size(); ++q) {
     Phi.row(q) = r.Psi.row(keep[q]);
     y[q] = r.y[keep[q]];
+    delta[q] = bounds[r.equation[keep[q]]];
   }
-  return FeasibleParameterSet::from_data(Phi, y, Eigen::VectorXd::Constant(keep.size(), bound));
+  return FeasibleParameterSet::from_data(Phi, y, delta);
 }
 
 PairView pair_view(const Ellipsoid& E, int i, int j) {

@@ -147,7 +147,7 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
     r.projection.push_back(verdict(sets::contains(v.projection, tp)));
     r.slice.push_back(v.slice ? verdict(sets::contains(*v.slice, tp)) : outside);
   }
-  const auto fps = sets::regression_fps(id.regression, dom.ell);
+  const auto fps = sets::regression_fps(id.regression, dom.ell_per_equation);
   r.fps_full = verdict(fps.contains(truth));
   const auto box = sets::outer_box(dom.ellipsoid);
   r.box_halfwidth = sets::radius(box);
@@ -323,7 +323,7 @@ int real_data(const Settings& st) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto id = sets::identify_propagator(u, y, o);
   const auto dom = sets::level_set_domain(id.regression, st.level);
-  const auto fps = sets::regression_fps(id.regression, dom.ell);
+  const auto fps = sets::regression_fps(id.regression, dom.ell_per_equation);
   const auto p = sets::pui(fps);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto names = id.structure.parameter_names();
@@ -383,8 +383,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"output-major", "lag-major"}));
   app.add_option("--residuals", residuals, "residuals that give l: all, outputs or states")
       ->check(CLI::IsMember({"all", "outputs", "states"}));
-  app.add_option("--norm", norm, "|eps(t)|: entrywise or sample (Euclidean norm per sample)")
-      ->check(CLI::IsMember({"entrywise", "sample"}));
+  app.add_option("--norm", norm,
+                 "|eps(t)|: entrywise, sample (Euclidean norm per sample) or equation (own l per equation)")
+      ->check(CLI::IsMember({"entrywise", "sample", "equation"}));
   app.add_option("--fps-pui-runs", st.fps_pui_runs, "compute FPS PUIs by LP in the first K runs (-1: all)")
       ->check(CLI::Range(-1, 100000000));
   app.add_option("--json", st.json_path, "write results as JSON");
@@ -400,7 +401,9 @@ int main(int argc, char** argv) {
   st.level.residuals = residuals == "outputs" ? sets::ResidualSelection::outputs
                        : residuals == "states" ? sets::ResidualSelection::states
                                                : sets::ResidualSelection::all;
-  st.level.norm = norm == "sample" ? sets::ResidualNorm::sample_euclidean : sets::ResidualNorm::entrywise;
+  st.level.norm = norm == "sample"     ? sets::ResidualNorm::sample_euclidean
+                  : norm == "equation" ? sets::ResidualNorm::per_equation
+                                       : sets::ResidualNorm::entrywise;
   try {
     if (!st.data.empty()) {
       if (st.inputs.empty() || st.outputs.empty())

@@ -8,8 +8,11 @@
 // residuals of the fit. The paper does not say which residuals eps(t) are, so it is an option:
 //   ResidualSelection: all rows of y_M (state and output equations; the paper's y_M), only the
 //     output equations (the rows that carry the measurement noise), or only the state equations;
-//   ResidualNorm: |eps(t)| as the absolute value of each entry, or as the Euclidean norm of the
-//     vector eps(t) of one sample (all selected equations at time t).
+//   ResidualNorm: |eps(t)| as the absolute value of each entry, as the Euclidean norm of the
+//     vector eps(t) of one sample (all selected equations at time t), or per equation: every
+//     equation e gets its own l_e = max_t |eps_e(t)| and the criterion is normalised,
+//     J_w = 1/2 sum (eps/l_e)^2 <= J_w,min + 1 (the selection is then ignored; an equation with
+//     l_e = 0 is clamped to 1e-12 max l_e, which makes the domain flat in its parameters).
 // The level set is NOT a guaranteed bound: l is a statistic of the residuals, not a noise bound.
 // The feasible parameter set {theta : |y_M - Psi theta| <= l entrywise} (strips) of the same
 // regression is what a guaranteed statement needs; its PUIs come from `pui()` by LP.
@@ -26,7 +29,7 @@
 namespace sets {
 
 enum class ResidualSelection { all, outputs, states };
-enum class ResidualNorm { entrywise, sample_euclidean };
+enum class ResidualNorm { entrywise, sample_euclidean, per_equation };
 
 struct LevelSetOptions {
   ResidualSelection residuals = ResidualSelection::all;
@@ -42,6 +45,7 @@ struct LevelSetDomain {
   double ell = 0;               // l
   double j_d = 0;               // J_min + l^2
   int ell_row = -1;             // the row (entrywise) or first row of the sample that attains l
+  Eigen::VectorXd ell_per_equation;  // l_e (per_equation; otherwise l for every equation)
 };
 
 /// Least squares and the level-set ellipsoid of a regression. Throws InputError when R is
@@ -56,6 +60,9 @@ double residual_bound(const CanonicalRegression& regression, const Eigen::Vector
 /// that involves theta. Rows whose regressor is zero do not constrain theta and are left out;
 /// `falsified_rows` (if given) receives those whose |y| exceeds the bound.
 FeasibleParameterSet regression_fps(const CanonicalRegression& regression, double bound,
+                                    std::vector<int>* falsified_rows = nullptr);
+/// The same with a bound per equation (bounds[e] for the rows of equation e).
+FeasibleParameterSet regression_fps(const CanonicalRegression& regression, const Eigen::VectorXd& bounds,
                                     std::vector<int>* falsified_rows = nullptr);
 
 /// The 2-D views of an ellipsoid for the parameters (i, j): the exact projection (shadow) and

@@ -59,6 +59,14 @@ TEST(LevelSetUncertainty, ResidualSelectionsAndNorms) {
   o.residuals = sets::ResidualSelection::all;
   o.norm = sets::ResidualNorm::sample_euclidean;
   EXPECT_NEAR(sets::level_set_domain(r, o).ell, std::sqrt(9.01), 1e-12);
+  o.norm = sets::ResidualNorm::per_equation;
+  const auto pe = sets::level_set_domain(r, o);
+  EXPECT_NEAR(pe.ell_per_equation[0], 0.1, 1e-12);
+  EXPECT_NEAR(pe.ell_per_equation[1], 3.0, 1e-12);
+  // Normalised criterion: dtheta_e^2 * 3 / l_e^2 <= 2 in each coordinate direction.
+  const auto pbox = sets::outer_box(pe.ellipsoid);
+  EXPECT_NEAR(pbox[0].upper() - 1.0, 0.1 * std::sqrt(2.0 / 3), 1e-9);
+  EXPECT_NEAR(pbox[1].upper() - 10.0, 3.0 * std::sqrt(2.0 / 3), 1e-9);
   // Domain: 1/2 dtheta^T R dtheta <= l^2 with R = 3 I: half-axes sqrt(2 l^2 / 3).
   const auto box = sets::outer_box(d.ellipsoid);
   EXPECT_NEAR(box[1].upper() - 10.0, std::sqrt(2 * 9.0 / 3), 1e-9);
