@@ -89,6 +89,8 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
   if (qr.rank() < m)
     throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(qr.rank()) + " < " +
                      std::to_string(m) + "); the parameters are not identifiable");
+  if (!(o.level_factor > 0) || !std::isfinite(o.level_factor))
+    throw InputError("level_set_domain: level_factor must be finite and > 0");
   LevelSetDomain d;
   if (o.norm != ResidualNorm::per_equation) {
     d.theta = qr.solve(r.y);
@@ -97,9 +99,9 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
     d.j_min = 0.5 * d.residuals.squaredNorm();
     d.ell = residual_bound(r, d.residuals, o, &d.ell_row);
     d.ell_per_equation = Eigen::VectorXd::Constant(r.equations, d.ell);
-    d.j_d = d.j_min + d.ell * d.ell;
-    // 1/2 dtheta^T R dtheta <= l^2  <=>  dtheta^T R dtheta <= 2 l^2.
-    d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, 2.0 * d.ell * d.ell);
+    d.j_d = d.j_min + 0.5 * o.level_factor * d.ell * d.ell;
+    // 1/2 dtheta^T R dtheta <= l^2  <=>  dtheta^T R dtheta <= 2 l^2 (level_factor 2).
+    d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, o.level_factor * d.ell * d.ell);
     return d;
   }
   // Per equation: l_e from the unweighted fit, then the normalised (weighted) criterion.
@@ -117,8 +119,8 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
   d.R = Pw.transpose() * Pw;
   d.residuals = r.y - r.Psi * d.theta;
   d.j_min = 0.5 * (yw - Pw * d.theta).squaredNorm();
-  d.j_d = d.j_min + 1.0;
-  d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, 2.0);
+  d.j_d = d.j_min + 0.5 * o.level_factor;
+  d.ellipsoid = Ellipsoid::from_level_set(d.theta, d.R, o.level_factor);
   return d;
 }
 

@@ -234,7 +234,8 @@ int monte_carlo(const Settings& st) {
             << st.snr_db << " dB SNR per channel, p = " << st.past << ", seed " << st.seed << "\n  rows of Gamma_1:";
   for (const auto& r : rows) std::cout << ' ' << sets::to_string(r);
   std::cout << "\n  residuals for l: " << sets::to_string(st.level.residuals) << ", "
-            << sets::to_string(st.level.norm) << "; mean l = " << std::setprecision(4) << ell_mean << "\n\n";
+            << sets::to_string(st.level.norm) << ", level dtheta' R dtheta <= " << st.level.level_factor
+            << " l^2; mean l = " << std::setprecision(4) << ell_mean << "\n\n";
   std::cout << "Table I  (true value from the printed A, B, C; mean and std over the runs)\n"
             << "  param         true          mean           std   |bias|/std\n";
   json jp = json::array();
@@ -298,6 +299,7 @@ int monte_carlo(const Settings& st) {
                      {"threads", st.threads},    {"estimate_d", st.estimate_d},
                      {"residuals", sets::to_string(st.level.residuals)},
                      {"norm", sets::to_string(st.level.norm)},
+                     {"level_factor", st.level.level_factor},
                      {"mean_ell", ell_mean},     {"pui_runs", pui_runs}};
     write_json(st.json_path, j);
   }
@@ -386,6 +388,9 @@ int main(int argc, char** argv) {
   app.add_option("--norm", norm,
                  "|eps(t)|: entrywise, sample (Euclidean norm per sample) or equation (own l per equation)")
       ->check(CLI::IsMember({"entrywise", "sample", "equation"}));
+  app.add_option("--level-factor", st.level.level_factor,
+                 "domain dtheta' R dtheta <= F l^2 (2: the paper's J = eps'eps/2; 1: without the 1/2)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--fps-pui-runs", st.fps_pui_runs, "compute FPS PUIs by LP in the first K runs (-1: all)")
       ->check(CLI::Range(-1, 100000000));
   app.add_option("--json", st.json_path, "write results as JSON");

@@ -34,6 +34,9 @@ enum class ResidualNorm { entrywise, sample_euclidean, per_equation };
 struct LevelSetOptions {
   ResidualSelection residuals = ResidualSelection::all;
   ResidualNorm norm = ResidualNorm::entrywise;
+  // The domain is dtheta^T R dtheta <= level_factor l^2. 2 is the paper's J = 1/2 eps^T eps with
+  // J_D - J_min = l^2; 1 is the reading that drops the 1/2 (axes shorter by sqrt 2).
+  double level_factor = 2.0;
 };
 
 struct LevelSetDomain {
