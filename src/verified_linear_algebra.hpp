@@ -7,6 +7,7 @@
 
 #include "sets/ellipsoid.hpp"
 #include "sets/interval_matrix.hpp"
+#include "sets/zonotope.hpp"
 
 namespace sets::detail {
 
@@ -31,5 +32,10 @@ std::optional<double> inverse_norm_bound(const Eigen::MatrixXd& A, const Eigen::
 Eigen::MatrixXd upper_symmetric_bound(const IntervalMatrix& P);
 /// A stored ellipsoid that contains E(c, T) for every c in the box `c` and symmetric PSD T in P.
 Ellipsoid outer_ellipsoid(const IntervalVector& c, const IntervalMatrix& P);
+
+/// A stored zonotope containing {c + G xi} for every c in the box `c` and G in the enclosure:
+/// centre and generators at the midpoints plus one axis-aligned generator per coordinate
+/// carrying the radii (only where nonzero).
+Zonotope outer_zonotope(const IntervalVector& c, const IntervalMatrix& G);
 
 }  // namespace sets::detail
