@@ -344,7 +344,7 @@ int real_data(const Settings& st) {
     std::cout << "The feasible parameter set with |eps| <= l is empty: " << p.falsification.message() << '\n';
     return 2;
   }
-  std::cout << "  param        estimate     ellipsoid box (not guaranteed)       FPS PUI (guaranteed for |eps| <= l)\n";
+  std::cout << "  param        estimate     ellipsoid box (not guaranteed)       FPS PUI (holds only if |eps| <= l at the truth)\n";
   json jp = json::array();
   for (int i = 0; i < id.theta.size(); ++i) {
     std::cout << "  " << std::left << std::setw(8) << names[i] << std::right << std::scientific << std::setprecision(5)
