@@ -9,7 +9,7 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake ninja-build pkg-config \
   libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev \
-  libglpk-dev coinor-libcbc-dev \
+  libglpk-dev \
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev \
   libcli11-dev nlohmann-json3-dev libmuparser-dev libmatio-dev \
   gnuplot-nox >/dev/null

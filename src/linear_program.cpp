@@ -6,7 +6,6 @@
 #include <cmath>
 #include <string>
 
-#include "milp_cbc.hpp"
 #include "sets/error.hpp"
 #include "sets/safe_bound.hpp"
 
@@ -36,7 +35,6 @@ struct LinearProgram::Impl {
   Eigen::VectorXd col_lo, col_hi, c;
   Sense sense = Sense::minimize;
   bool has_integer = false;
-  std::vector<char> integer;  // per column, for the CBC backend
   std::optional<Eigen::VectorXd> heuristic_start;
   // Best bound seen by the MILP callback.
   double tree_bound = 0;
@@ -95,7 +93,6 @@ int LinearProgram::add_variables(int count, double lo, double hi) {
   impl_->col_lo.conservativeResize(first + count);
   impl_->col_hi.conservativeResize(first + count);
   impl_->c.conservativeResize(first + count);
-  impl_->integer.resize(static_cast<std::size_t>(first + count), 0);
   for (int j = first; j < first + count; ++j) {
     impl_->c[j] = 0;
     impl_->col_lo[j] = lo;
@@ -120,7 +117,6 @@ double LinearProgram::variable_upper(int j) const { return impl_->col_hi[j]; }
 void LinearProgram::set_integer(int j, bool integer) {
   if (j < 0 || j >= impl_->n()) throw InputError("LinearProgram: variable index out of range");
   glp_set_col_kind(impl_->lp, j + 1, integer ? GLP_IV : GLP_CV);
-  impl_->integer[static_cast<std::size_t>(j)] = integer ? 1 : 0;
   if (integer) impl_->has_integer = true;
 }
 
@@ -331,9 +327,6 @@ MilpSolution LinearProgram::solve_milp(const MilpOptions& options,
   glp_prob* lp = impl_->lp;
   if (start && start->size() != impl_->n())
     throw InputError("LinearProgram::solve_milp: start point has the wrong dimension");
-  if (options.backend == MilpBackend::cbc)
-    return detail::solve_milp_cbc({impl_->rows, impl_->col_lo, impl_->col_hi, impl_->c, impl_->sense, impl_->integer},
-                                  options, start);
   const auto t0 = std::chrono::steady_clock::now();
   // The relaxation first (GLPK's branch-and-cut needs an optimal LP basis).
   glp_smcp sm;
@@ -395,7 +388,6 @@ const char* to_string(LpStatus s) {
     default: return "unbounded";
   }
 }
-const char* to_string(MilpBackend b) { return b == MilpBackend::cbc ? "cbc" : "glpk"; }
 const char* to_string(MilpStatus s) {
   switch (s) {
     case MilpStatus::optimal: return "optimal";

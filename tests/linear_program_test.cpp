@@ -8,9 +8,6 @@
 #include <CGAL/QP_models.h>
 
 #include <cmath>
-#include <optional>
-#include <random>
-#include <vector>
 
 #include "sets/error.hpp"
 #include "sets/linear_program.hpp"
@@ -171,99 +168,4 @@ TEST(Milp, SolvesKnapsackWithGapAndBound) {
   ASSERT_EQ(s.status, sets::MilpStatus::optimal);
   EXPECT_NEAR(s.objective, 9.0, 1e-9);  // a = b = 1
   EXPECT_NEAR(s.gap, 0.0, 1e-9);
-}
-
-namespace {
-
-// Brute force over the integer columns (small boxes); the continuous column y is solved by hand:
-// it appears only in  a^T x + y <= b_row  with 0 <= y <= 1 and objective weight w >= 0 (max), so
-// y = clamp(min slack, 0, 1).
-struct SmallMilp {
-  Eigen::MatrixXd A;  // rows over (x_0..x_{k-1}, y)
-  Eigen::VectorXd b, c;
-  int hi = 1;  // integer columns in 0..hi
-};
-
-double brute_force(const SmallMilp& p) {
-  const int k = static_cast<int>(p.c.size()) - 1;
-  double best = -inf;
-  std::vector<int> x(static_cast<std::size_t>(k), 0);
-  while (true) {
-    double y = 1, value = 0;
-    bool ok = true;
-    for (Eigen::Index i = 0; i < p.A.rows(); ++i) {
-      double lhs = 0;
-      for (int j = 0; j < k; ++j) lhs += p.A(i, j) * x[static_cast<std::size_t>(j)];
-      const double slack = p.b[i] - lhs;
-      if (slack < -1e-12) ok = false;
-      else y = std::min(y, slack / p.A(i, k));
-    }
-    if (ok) {
-      for (int j = 0; j < k; ++j) value += p.c[j] * x[static_cast<std::size_t>(j)];
-      best = std::max(best, value + p.c[k] * y);
-    }
-    int j = 0;
-    while (j < k && ++x[static_cast<std::size_t>(j)] > p.hi) x[static_cast<std::size_t>(j++)] = 0;
-    if (j == k) break;
-  }
-  return best;
-}
-
-}  // namespace
-
-TEST(Milp, GlpkAndCbcAgreeWithBruteForceOnRandomKnapsacks) {
-  std::mt19937 rng(3);
-  std::uniform_int_distribution<int> coef(1, 9);
-  for (int trial = 0; trial < 12; ++trial) {
-    const int k = 4 + trial % 4, rows = 2 + trial % 2;
-    SmallMilp p;
-    p.hi = trial % 3 == 0 ? 2 : 1;
-    p.A.resize(rows, k + 1);
-    p.b.resize(rows);
-    p.c.resize(k + 1);
-    for (int i = 0; i < rows; ++i) {
-      for (int j = 0; j <= k; ++j) p.A(i, j) = coef(rng);
-      p.b[i] = 0.5 * p.A.row(i).head(k).sum() * p.hi + 0.5;
-    }
-    for (int j = 0; j <= k; ++j) p.c[j] = coef(rng);
-    const double exact = brute_force(p);
-    for (const auto backend : {sets::MilpBackend::glpk, sets::MilpBackend::cbc}) {
-      LinearProgram lp(k + 1);
-      for (int j = 0; j < k; ++j) {
-        lp.set_variable_bounds(j, 0, p.hi);
-        lp.set_integer(j);
-      }
-      lp.set_variable_bounds(k, 0, 1);
-      lp.add_rows(p.A, Eigen::VectorXd::Constant(rows, -inf), p.b);
-      lp.set_objective(p.c, Sense::maximize);
-      // A feasible start (all zeros) must not change the optimum.
-      const std::optional<Eigen::VectorXd> start =
-          trial % 2 ? std::optional<Eigen::VectorXd>(Eigen::VectorXd::Zero(k + 1)) : std::nullopt;
-      const auto s = lp.solve_milp({.time_limit_s = 10, .backend = backend}, start);
-      SCOPED_TRACE(std::string(sets::to_string(backend)) + " trial " + std::to_string(trial));
-      ASSERT_EQ(s.status, sets::MilpStatus::optimal);
-      EXPECT_NEAR(s.objective, exact, 1e-6 * (1 + std::abs(exact)));
-      EXPECT_LE(s.gap, 1e-6);
-      EXPECT_GE(s.best_bound, exact - 1e-6 * (1 + std::abs(exact)));  // a valid upper bound (max)
-      // The returned point is integral, feasible and attains the objective.
-      ASSERT_EQ(s.x.size(), k + 1);
-      for (int j = 0; j < k; ++j) EXPECT_NEAR(s.x[j], std::round(s.x[j]), 1e-6);
-      EXPECT_TRUE(((p.A * s.x).array() <= p.b.array() + 1e-6).all());
-      EXPECT_NEAR(p.c.dot(s.x), s.objective, 1e-6 * (1 + std::abs(exact)));
-    }
-  }
-}
-
-TEST(Milp, CbcReportsInfeasibility) {
-  LinearProgram lp(2);
-  for (int j = 0; j < 2; ++j) {
-    lp.set_variable_bounds(j, 0, 1);
-    lp.set_integer(j);
-  }
-  lp.add_row(Eigen::Vector2d(1, 1), 0.5, 0.8);  // no 0/1 point in between
-  lp.set_objective(Eigen::Vector2d(1, 1), Sense::minimize);
-  EXPECT_EQ(lp.solve_milp({.time_limit_s = 5, .backend = sets::MilpBackend::glpk}).status,
-            sets::MilpStatus::infeasible);
-  EXPECT_EQ(lp.solve_milp({.time_limit_s = 5, .backend = sets::MilpBackend::cbc}).status,
-            sets::MilpStatus::infeasible);
 }

@@ -214,28 +214,6 @@ TEST(TvBound, PaperAndSingleBinaryFormulationsAgree) {
   EXPECT_LE(data.ball().norms(sets::stack_samples(single.residual))[0], lin.epsilon[0] * (1 + 1e-6) + 1e-9);
 }
 
-TEST(TvBound, GlpkAndCbcBackendsAgreeOnASmallSparseStepMilp) {
-  const int N = 16;
-  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-  pi.block(5, 0, N - 5, 1).setConstant(0.3);
-  pi.block(9, 2, N - 9, 1).setConstant(-0.4);
-  const auto data = small_data(pi, 0.01, 7, 4);
-  const auto lin = sets::linf_bound(data);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(1.0);
-  o.epsilon = lin.epsilon;
-  o.milp.time_limit_s = 10;
-  o.start = lin.pi;
-  const auto glpk = sets::sparse_bound(data, o);
-  o.milp.backend = sets::MilpBackend::cbc;
-  const auto cbc = sets::sparse_bound(data, o);
-  ASSERT_TRUE(glpk.status == sets::MilpStatus::optimal) << sets::to_string(glpk.status);
-  ASSERT_TRUE(cbc.status == sets::MilpStatus::optimal) << sets::to_string(cbc.status);
-  EXPECT_NEAR(glpk.objective, cbc.objective, 1e-3 * (1 + std::abs(glpk.objective)));
-  EXPECT_LE(data.ball().norms(sets::stack_samples(cbc.residual))[0], lin.epsilon[0] * (1 + 1e-6) + 1e-9);
-}
-
 TEST(TvBound, BadInputIsRejectedWithClearErrors) {
   auto m = small_model();
   const Eigen::MatrixXd u = square_input(10, 3);

@@ -140,7 +140,6 @@ int main(int argc, char** argv) {
   int only = -1;
   double scale = 1;
   std::string milp_eps = "linf";
-  std::string backend = "glpk";
   app.add_option("--method", method, "linf, milp or both")->check(CLI::IsMember({"linf", "milp", "both"}));
   app.add_option("--table", table, "I, II, III or all")->check(CLI::IsMember({"I", "II", "III", "all"}));
   app.add_option("--time-limit", time_limit, "MILP time limit per case [s]")->check(CLI::PositiveNumber);
@@ -163,9 +162,7 @@ int main(int argc, char** argv) {
                  "eps of the MILP: linf (from (8), the paper's) or oracle (the window norm of "
                  "y_m - Upsilon - Xi Pi at the true Pi; a diagnostic only)")
       ->check(CLI::IsMember({"linf", "oracle"}));
-  app.add_option("--milp-backend", backend, "MILP solver: glpk or cbc (COIN-OR CBC, single-threaded)")
-      ->check(CLI::IsMember({"glpk", "cbc"}));
-  app.add_flag("--verbose", verbose, "branch-and-cut log of the MILP solver");
+  app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -178,7 +175,7 @@ int main(int argc, char** argv) {
     nlohmann::json out;
     out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"mu_rel", mu_rel},
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
-                       {"scale", scale}, {"milp_eps", milp_eps}, {"milp_backend", backend}};
+                       {"scale", scale}, {"milp_eps", milp_eps}};
     out["cases"] = nlohmann::json::array();
     std::vector<Case> selected = cases(table);
     if (only >= 0) {
@@ -250,8 +247,7 @@ int main(int argc, char** argv) {
         so.epsilon = milp_eps == "oracle" ? Eigen::VectorXd::Constant(1, true_nu) : linf.epsilon;
         so.formulation =
             formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
-        so.milp = {time_limit, gap, verbose,
-                   backend == "cbc" ? sets::MilpBackend::cbc : sets::MilpBackend::glpk};
+        so.milp = {time_limit, gap, verbose};
         if (warm) so.start = linf.pi;
         const auto m = sets::sparse_bound(data, so);
         const Eigen::VectorXd rms = sets::rms_tracking_error(m.pi, pi);

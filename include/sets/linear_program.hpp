@@ -38,15 +38,10 @@ struct LpSolution {
 
 enum class MilpStatus { optimal, feasible, infeasible, no_solution };
 
-/// Branch-and-cut engine of solve_milp: GLPK (glp_intopt) or COIN-OR CBC (CbcMain1, single-threaded).
-/// CBC keeps global state in CbcMain1: never run two CBC solves at once (GLPK has no such limit).
-enum class MilpBackend { glpk, cbc };
-
 struct MilpOptions {
-  double time_limit_s = 60;  // wall clock; the solver stops here with its incumbent
+  double time_limit_s = 60;  // GLPK branch-and-cut stops here with its incumbent
   double relative_gap = 1e-6;
   bool verbose = false;
-  MilpBackend backend = MilpBackend::glpk;
 };
 
 struct MilpSolution {
@@ -121,6 +116,5 @@ class LinearProgram {
 
 const char* to_string(LpStatus s);
 const char* to_string(MilpStatus s);
-const char* to_string(MilpBackend b);
 
 }  // namespace sets
