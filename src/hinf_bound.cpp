@@ -36,10 +36,20 @@ double weighted_l1(const Eigen::VectorXd& c) {
 }
 // Rigorous lower bound on min_w |c(e^{-iw})| over [0, pi] (real coefficients: |c| is even in w):
 // the minimum over a grid of spacing d, less (d/2) sup|c'|.
+// Second order: g = |c|^2 has |g''| <= 2((sum k|c_k|)^2 + sum|c_k| sum k^2|c_k|), and between two
+// grid points g >= min(ends) - spacing^2/8 sup|g''|.
+double weighted_l2(const Eigen::VectorXd& c) {
+  double s = 0;
+  for (Eigen::Index k = 0; k < c.size(); ++k) s += double(k) * k * std::abs(c[k]);
+  return s;
+}
 double poly_min_modulus(const Eigen::VectorXd& c, int points = 8192) {
   double m = inf;
-  for (int i = 0; i < points; ++i) m = std::min(m, std::abs(poly_at(c, pi * i / (points - 1))));
-  return m - 0.5 * pi / (points - 1) * weighted_l1(c);
+  for (int i = 0; i < points; ++i) m = std::min(m, std::norm(poly_at(c, pi * i / (points - 1))));
+  const double d = pi / (points - 1), l1 = weighted_l1(c);
+  const double g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * weighted_l2(c));
+  const double lo = m - d * d / 8 * g2;
+  return lo > 0 ? std::sqrt(lo) : 0;
 }
 
 Eigen::VectorXcd roots_of(const Eigen::VectorXd& monic_desc) {
@@ -487,25 +497,28 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
     r[nv - 1] = -1;
     lp.add_row(r, -inf, W1[j] * W1[j] * d2);
   }
-  const int nd = 1024;
-  const double floor = 1e-3 * delta.minCoeff() * delta.minCoeff() + 1e-8 * dmax * dmax;
+  // |W^-1|^2 >= a quarter of the smallest delta^2 between grid points too: W stays bounded.
+  const int nd = 2048;
+  const double floor = 0.25 * delta.minCoeff() * delta.minCoeff() + 1e-8 * dmax * dmax;
   for (int d = 0; d < nd; ++d) lp.add_row(cosrow(pi * d / (nd - 1)), floor, inf);
   lp.set_objective_coordinate(nv - 1, Sense::minimize);
   const LpSolution sol = lp.solve();
   if (sol.status != LpStatus::optimal) throw NumericalError("weight: the LP for |W^-1|^2 has no optimum");
   WeightFit fit;
   fit.trig = sol.x.head(m + 1);
-  // Positivity on all of [0, pi]: grid minimum less (spacing/2) sup|P'|, sup|P'| <= sum k|c_k|.
+  // Positivity on all of [0, pi]: grid minimum less spacing^2/8 sup|P''|.
   auto P = [&](double w) {
     double s = 0;
     for (int k = 0; k <= m; ++k) s += fit.trig[k] * std::cos(k * w);
     return s;
   };
   double pmin = inf;
-  const int nc = 8192;
+  const int nc = 16384;
   for (int i = 0; i < nc; ++i) pmin = std::min(pmin, P(pi * i / (nc - 1)));
-  if (!(pmin - 0.5 * pi / (nc - 1) * weighted_l1(fit.trig) > 0))
-    throw NumericalError("weight: |W^-1|^2 is not certified positive; lower the weight degree");
+  const double spacing = pi / (nc - 1);  // |P''| <= sum k^2 |c_k|
+  if (!(pmin - spacing * spacing / 8 * weighted_l2(fit.trig) > 0))
+    throw NumericalError("weight: |W^-1|^2 is not certified positive (grid minimum " + num(pmin) +
+                         ", curvature bound " + num(weighted_l2(fit.trig)) + "); lower the weight degree");
   // Spectral factor: z^m P(z) has roots in pairs (r, 1/conj r); keep those inside the circle.
   int mm = m;
   while (mm > 0 && std::abs(fit.trig[mm]) < 1e-13 * std::abs(fit.trig[0])) --mm;

@@ -1,6 +1,7 @@
 #include "sets/orthonormal_basis.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "sets/error.hpp"
@@ -39,14 +40,37 @@ double amin(const std::vector<double>& moduli) {
 }
 }  // namespace
 
-double DiscreteTf::hinf_bound() const { return b.cwiseAbs().sum() / amin(pole_moduli); }
+namespace {
+constexpr int grid_points = 8192;
+std::complex<double> poly(const Eigen::VectorXd& c, double w) {
+  std::complex<double> s = 0;
+  for (Eigen::Index k = c.size() - 1; k >= 0; --k) s = s * std::polar(1.0, -w) + c[k];
+  return s;
+}
+double kl1(const Eigen::VectorXd& c) {
+  double s = 0;
+  for (Eigen::Index k = 0; k < c.size(); ++k) s += k * std::abs(c[k]);
+  return s;
+}
+// Rigorous lower bound on min |a(e^{-iw})|: the larger of prod(1-|p_i|) and the grid minimum
+// less (spacing/2) sup|a'| (real coefficients: |a| is even in w, so [0, pi] suffices).
+double a_min(const DiscreteTf& f) {
+  double g = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < grid_points; ++i) g = std::min(g, std::abs(poly(f.a, M_PI * i / (grid_points - 1))));
+  return std::max(amin(f.pole_moduli), g - 0.5 * M_PI / (grid_points - 1) * kl1(f.a));
+}
+}  // namespace
 
 double DiscreteTf::derivative_bound() const {
-  double kb = 0, ka = 0;
-  for (Eigen::Index k = 0; k < b.size(); ++k) kb += k * std::abs(b[k]);
-  for (Eigen::Index k = 0; k < a.size(); ++k) ka += k * std::abs(a[k]);
-  const double m = amin(pole_moduli);
-  return kb / m + b.cwiseAbs().sum() * ka / (m * m);
+  const double m = a_min(*this);
+  return kl1(b) / m + b.cwiseAbs().sum() * kl1(a) / (m * m);
+}
+
+double DiscreteTf::hinf_bound() const {
+  // Grid maximum plus (spacing/2) sup|f'|: tight, and rigorous given derivative_bound().
+  double g = 0;
+  for (int i = 0; i < grid_points; ++i) g = std::max(g, std::abs((*this)(M_PI * i / (grid_points - 1))));
+  return std::min(b.cwiseAbs().sum() / amin(pole_moduli), g + 0.5 * M_PI / (grid_points - 1) * derivative_bound());
 }
 
 OrthonormalBasis OrthonormalBasis::fir() { return laguerre(0.0); }
