@@ -43,13 +43,15 @@ double weighted_l2(const Eigen::VectorXd& c) {
   for (Eigen::Index k = 0; k < c.size(); ++k) s += double(k) * k * std::abs(c[k]);
   return s;
 }
-double poly_min_modulus(const Eigen::VectorXd& c, int points = 8192) {
-  double m = inf;
-  for (int i = 0; i < points; ++i) m = std::min(m, std::norm(poly_at(c, pi * i / (points - 1))));
-  const double d = pi / (points - 1), l1 = weighted_l1(c);
-  const double g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * weighted_l2(c));
-  const double lo = m - d * d / 8 * g2;
-  return lo > 0 ? std::sqrt(lo) : 0;
+double poly_min_modulus(const Eigen::VectorXd& c) {
+  const double l1 = weighted_l1(c), g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * weighted_l2(c));
+  for (int points = 8192; points <= (1 << 19); points *= 8) {  // refine until certified
+    double m = inf;
+    for (int i = 0; i < points; ++i) m = std::min(m, std::norm(poly_at(c, pi * i / (points - 1))));
+    const double d = pi / (points - 1), lo = m - d * d / 8 * g2;
+    if (lo > 0) return std::sqrt(lo);
+  }
+  return 0;
 }
 
 Eigen::VectorXcd roots_of(const Eigen::VectorXd& monic_desc) {
@@ -445,7 +447,7 @@ NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
     m.a.tail(ng) = sol.x.head(ng);
     m.b = sol.x.segment(ng, ng + 1);
     fit.iterations = it + 1;
-    if (!m.stable(1e-9)) break;  // the positive-real constraint held only on the dense grid
+    if (!m.stable(1e-4)) break;  // the positive-real constraint held only on the dense grid
     const double e = true_error(m);
     const bool improved = e < best;
     if (improved) {
@@ -593,7 +595,11 @@ HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eig
   if (r.set.empty) return r;
   r.nominal = fit_nominal(r.set, o.nominal);
   r.delta = additive_error(r.set, r.nominal.model);
-  r.weight = fit_weight(grid, r.delta, o.weight);
+  // Default W1 = 1/delta: minimise the largest relative over-bound |W^-1|^2/delta^2 - 1, so the
+  // bound follows delta at every level rather than only near its peak.
+  WeightOptions wo = o.weight;
+  if (wo.weight.size() == 0) wo.weight = r.delta.cwiseMax(1e-12 * r.delta.maxCoeff()).cwiseInverse();
+  r.weight = fit_weight(grid, r.delta, wo);
   r.bound = error_bound(r.set, r.nominal.model, r.weight.h);
   r.unweighted = error_bound(r.set, r.nominal.model, Eigen::VectorXd::Ones(1));
   return r;

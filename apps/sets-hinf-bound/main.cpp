@@ -393,7 +393,7 @@ int main(int argc, char** argv) {
               << "-gon, " << R.nominal.iterations << " LP iterations): Ghat(z) = " << R.nominal.model.to_string()
               << "\n  max_j |Gc - Ghat| = " << R.nominal.max_error << "\n";
     std::cout << "Weight: |W^-1|^2 trigonometric polynomial of degree " << weight_degree
-              << ", W^-1(z) = sum h_k z^-k minimum phase; max_j (|W^-1|^2 - delta^2) = " << R.weight.max_gap << "\n";
+              << ", W^-1(z) = sum h_k z^-k minimum phase; max_j W1^2 (|W^-1|^2 - delta^2) with W1 = 1/delta: " << R.weight.max_gap << "\n";
     std::cout << "beta1 (eq. 12) = " << R.set.beta1 << ", first regression sample " << R.set.first_sample + 1
               << ", tail terms evaluated " << R.set.tail_terms << "\n";
     std::cout << "Bound (run 1): b = " << R.bound.b << " (with the interpolation term lambda_j beta_j; guaranteed on [0, pi])\n"
