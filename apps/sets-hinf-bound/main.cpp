@@ -340,7 +340,7 @@ int main(int argc, char** argv) {
     int fail_b = 0, fail_grid = 0, fail_regions = 0, falsified = 0;
     double time_total = 0;
     sets::HinfBoundResult first;
-    std::vector<double> bs, bgrids;
+    std::vector<double> bs, bgrids, ubs, ubgrids, radii;
     for (int run = 0; run < runs; ++run) {
       if (builtin) {
         const Simulated s = simulate(G0, N, noise_std, bounded, rng);
@@ -365,6 +365,11 @@ int main(int argc, char** argv) {
       }
       bs.push_back(R.bound.b);
       bgrids.push_back(R.bound.b_grid);
+      ubs.push_back(R.unweighted.b);
+      ubgrids.push_back(R.unweighted.b_grid);
+      double rad = 0;
+      for (const auto& P : R.set.regions) rad += std::hypot(P.half_re, P.half_im) / R.set.regions.size();
+      radii.push_back(rad);
       if (run == 0) first = R;
     }
     if (first.set.empty) {
@@ -401,6 +406,13 @@ int main(int argc, char** argv) {
               << "               unweighted (W = 1): ||G0 - Ghat||_inf <= " << R.unweighted.b
               << ", on the grid " << R.unweighted.b_grid << "\n";
     const double mean_time = time_total / runs;
+    auto mean = [](const std::vector<double>& v) {
+      double s = 0;
+      for (double x : v) s += x;
+      return v.empty() ? 0.0 : s / v.size();
+    };
+    std::cout << "Means over " << bs.size() << " runs: region radius " << mean(radii) << ", unweighted bound on the grid "
+              << mean(ubgrids) << ", unweighted bound " << mean(ubs) << ", b " << mean(bs) << "\n";
     std::cout << "Time per data set: " << mean_time << " s\n";
     double fr = 0, fr_grid = 0, fr_reg = 0;
     const int valid = runs - falsified;
@@ -444,6 +456,9 @@ int main(int argc, char** argv) {
       j["delta"] = d;
       j["w_inv"] = wi;
       j["b_runs"] = bs;
+      j["mean_region_radius"] = mean(radii);
+      j["mean_unweighted_b_grid"] = mean(ubgrids);
+      j["mean_unweighted_b"] = mean(ubs);
       j["b_grid_runs"] = bgrids;
       write_atomically(json_path, [&](const std::string& tmp) {
         std::ofstream o(tmp);
