@@ -223,7 +223,7 @@ int main(int argc, char** argv) {
                "(Hakvoort & Van den Hof)"};
   int N = 2000, runs = 200, order = 40, nominal_order = 2, grid_points = 150, polygon = 16, weight_degree = 12;
   double alpha = 0.95, pole = 0.93, pole_angle = 0.66, rho = 0.88, M = -1, u_bar = 1, M_ic = -1, rho_ic = -1;
-  double v_bar = -1, noise_std = 0.02;
+  double v_bar = -1, noise_std = 0.02, w_min = 0, w_max = pi;
   std::string basis_name = "kautz", noise_name = "stochastic", shape_name = "rectangle", json_path, plot_path;
   std::string data_path, ucol, ycol, rcol;
   unsigned seed = 1;
@@ -239,6 +239,8 @@ int main(int argc, char** argv) {
   app.add_option("--shape", shape_name, "rectangle | ellipse (stochastic)")->check(CLI::IsMember({"rectangle", "ellipse"}));
   app.add_option("--per-frequency", per_frequency, "alpha per frequency (the paper) instead of simultaneous");
   app.add_option("--grid", grid_points, "number of frequencies in (0, pi)")->check(CLI::Range(2, 100000));
+  app.add_option("--w-min", w_min, "lowest grid frequency (rad/sample, >= 0)");
+  app.add_option("--w-max", w_max, "highest grid frequency (rad/sample, <= pi)");
   app.add_option("--nominal-order", nominal_order, "order of the nominal model");
   app.add_option("--polygon", polygon, "K: sides of the polygon replacing |.| in the nominal-model LP");
   app.add_option("--weight-degree", weight_degree, "degree of the trigonometric polynomial |W^-1|^2");
@@ -266,7 +268,8 @@ int main(int argc, char** argv) {
                                    : basis_name == "laguerre" ? sets::OrthonormalBasis::laguerre(pole)
                                                               : sets::OrthonormalBasis::kautz(std::polar(pole, pole_angle));
     Eigen::VectorXd grid(grid_points);
-    for (int j = 0; j < grid_points; ++j) grid[j] = pi * (j + 0.5) / grid_points;
+    for (int j = 0; j < grid_points; ++j) grid[j] = w_min + (w_max - w_min) * (j + 0.5) / grid_points;
+    sets::check_frequency_grid(grid);
     const sets::RationalModel G0 = true_system();
 
     sets::HinfPriors priors;
