@@ -97,6 +97,7 @@ TEST(SetIo, ProjectionPolygonsContainTheProjectedSets) {
   }
   std::ostringstream os;
   sets::write_polygon(os, PZ);
-  EXPECT_EQ(std::count(os.str().begin(), os.str().end(), '\n'), PZ.cols() + 2);  // closed + blank line
+  const std::string text = os.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), PZ.cols() + 2);  // closed + blank line
   EXPECT_THROW(sets::projection_polygon(Z, 0, 0), sets::InputError);
 }
