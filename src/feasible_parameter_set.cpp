@@ -59,7 +59,19 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  for (Eigen::Index t = 0; t < Phi.rows(); ++t) f.add_strip(IntervalVector(Phi.row(t).transpose()), Y[t]);
+  // Same checks as add_strip, but one allocation (add_strip's row-by-row growth is quadratic).
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+    const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
+    for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+      if (!std::isfinite(Phi(t, j).lower()) || !std::isfinite(Phi(t, j).upper()))
+        throw InputError(where + ", regressor entry " + std::to_string(j) + " is not finite");
+      if (Phi(t, j).lower() != Phi(t, j).upper()) f.eiv_ = true;
+    }
+    if (!std::isfinite(Y[t].lower()) || !std::isfinite(Y[t].upper()))
+      throw InputError(where + ", output bound is not finite");
+  }
+  f.Phi_ = Phi;
+  f.Y_ = Y;
   return f;
 }
 
@@ -161,37 +173,101 @@ HPolytope FeasibleParameterSet::orthant_polytope(const Orthant& s) const {
 
 namespace {
 
-struct OrthantLp {
-  LinearProgram lp;
-  std::vector<int> row_sample;  // LP row -> sample index
-};
-
-OrthantLp build_orthant_lp(const FeasibleParameterSet& fps, const Orthant& s) {
-  const int p = fps.dimension();
-  OrthantLp o{LinearProgram(p), {}};
-  for (int j = 0; j < p; ++j) {
-    if (s.empty()) continue;
-    if (s[static_cast<std::size_t>(j)] > 0)
-      o.lp.set_variable_bounds(j, 0, inf);
-    else
-      o.lp.set_variable_bounds(j, -inf, 0);
-  }
-  Eigen::VectorXd lo_row, hi_row;
-  for (int t = 0; t < fps.size(); ++t) {
-    orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
-    const Interval& Y = fps.outputs()[t];
-    if (lo_row == hi_row) {
-      o.lp.add_row(lo_row, Y.lower(), Y.upper());
-      o.row_sample.push_back(t);
+// The LP of one orthant piece. With many samples only a working set of them is in the LP
+// (constraint generation): after each solve the optimum is checked against every sample and the
+// most violated ones are added, until none is violated. A working set is a relaxation, so every
+// emptiness verdict and every safe bound it gives holds for the full set; and once no sample is
+// violated, the relaxation's optimum is the full optimum (tightness is not lost).
+class OrthantLp {
+ public:
+  OrthantLp(const FeasibleParameterSet& fps, const Orthant& s, bool working_set, bool warm)
+      : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(warm) {
+    const int p = fps.dimension(), N = fps.size();
+    for (int j = 0; j < p; ++j) {
+      if (s.empty()) continue;
+      if (s[static_cast<std::size_t>(j)] > 0)
+        lp_.set_variable_bounds(j, 0, inf);
+      else
+        lp_.set_variable_bounds(j, -inf, 0);
+    }
+    lo_.resize(N, p);
+    hi_.resize(N, p);
+    ylo_.resize(N);
+    yhi_.resize(N);
+    Eigen::VectorXd lo_row, hi_row;
+    for (int t = 0; t < N; ++t) {
+      orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
+      lo_.row(t) = lo_row.transpose();
+      hi_.row(t) = hi_row.transpose();
+      ylo_[t] = fps.outputs()[t].lower();
+      yhi_[t] = fps.outputs()[t].upper();
+    }
+    const int start = working_set ? std::min(N, 10 * p + 10) : N;
+    if (start == N) {
+      for (int t = 0; t < N; ++t) add_sample(t);
     } else {
-      o.lp.add_row(lo_row, -inf, Y.upper());
-      o.lp.add_row(hi_row, Y.lower(), inf);
-      o.row_sample.push_back(t);
-      o.row_sample.push_back(t);
+      // An evenly spread starting set; the rest come in as they are violated.
+      for (int k = 0; k < start; ++k) add_sample(static_cast<int>(static_cast<long>(k) * N / start));
     }
   }
-  return o;
-}
+
+  LinearProgram& lp() { return lp_; }
+  bool complete() const { return added_ == static_cast<int>(in_.size()); }
+
+  /// Solves the current objective over the full set: re-solves after adding violated samples.
+  LpSolution solve(int& lps) {
+    for (;;) {
+      if (!warm_) lp_.reset_basis();
+      LpSolution sol = lp_.solve();
+      ++lps;
+      if (sol.status == LpStatus::infeasible || complete()) return sol;
+      if (sol.status == LpStatus::unbounded) {
+        // The relaxation may be unbounded where the full set is not: take every sample.
+        for (int t = 0; t < static_cast<int>(in_.size()); ++t)
+          if (!in_[static_cast<std::size_t>(t)]) add_sample(t);
+        continue;
+      }
+      if (add_violated(sol.x) == 0) return sol;
+    }
+  }
+
+ private:
+  void add_sample(int t) {
+    in_[static_cast<std::size_t>(t)] = 1;
+    ++added_;
+    const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
+    if (lo_row == hi_row) {
+      lp_.add_row(lo_row, ylo_[t], yhi_[t]);
+    } else {
+      lp_.add_row(lo_row, -inf, yhi_[t]);
+      lp_.add_row(hi_row, ylo_[t], inf);
+    }
+  }
+
+  // Adds the samples the point x violates most; returns how many were added.
+  int add_violated(const Eigen::VectorXd& x) {
+    const Eigen::VectorXd a = lo_ * x, b = hi_ * x;
+    std::vector<std::pair<double, int>> violated;
+    for (Eigen::Index t = 0; t < a.size(); ++t) {
+      if (in_[static_cast<std::size_t>(t)]) continue;
+      const double v = std::max(a[t] - yhi_[t], ylo_[t] - b[t]);
+      const double tol = 1e-9 * (1 + std::abs(yhi_[t]) + std::abs(ylo_[t]));
+      if (v > tol) violated.emplace_back(v, static_cast<int>(t));
+    }
+    const std::size_t k = std::min<std::size_t>(violated.size(), 60 + 4 * static_cast<std::size_t>(x.size()));
+    std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(k), violated.end(),
+                      [](const auto& u, const auto& v) { return u.first > v.first; });
+    for (std::size_t i = 0; i < k; ++i) add_sample(violated[i].second);
+    return static_cast<int>(k);
+  }
+
+  LinearProgram lp_;
+  std::vector<char> in_;
+  bool warm_;
+  int added_ = 0;
+  Eigen::MatrixXd lo_, hi_;  // orthant rows of every sample
+  Eigen::VectorXd ylo_, yhi_;
+};
 
 struct OrthantOutcome {
   OrthantStatus status = OrthantStatus::unknown;
@@ -207,23 +283,25 @@ bool is_zero_face(const Orthant& s, int j, bool lower) {
   return lower ? s[static_cast<std::size_t>(j)] > 0 : s[static_cast<std::size_t>(j)] < 0;
 }
 
-OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, bool safe) {
+OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options) {
+  const bool safe = options.safe;
   const int p = fps.dimension();
-  OrthantLp o = build_orthant_lp(fps, s);
+  OrthantLp o(fps, s, options.working_set, options.warm_start);
   OrthantOutcome out;
   out.float_lo.resize(p);
   out.float_hi.resize(p);
   out.lower_points.resize(p, p);
   out.upper_points.resize(p, p);
   // Phase 1: floating-point PUIs; the 2p problems share one constraint matrix and warm-start.
+  std::vector<LpSolution> phase1(static_cast<std::size_t>(2 * p));
   for (int l = 0; l < p; ++l) {
     for (Sense sense : {Sense::minimize, Sense::maximize}) {
-      o.lp.set_objective_coordinate(l, sense);
-      const LpSolution sol = o.lp.solve();
-      ++out.lps;
+      o.lp().set_objective_coordinate(l, sense);
+      const LpSolution& sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))] = o.solve(out.lps);
       if (sol.status == LpStatus::infeasible) {
         // Certify emptiness with exact rational arithmetic before calling the orthant empty.
-        const LpSolution exact = o.lp.solve_exact();
+        // (A working set is a relaxation: if it is empty, so is the full set.)
+        const LpSolution exact = o.lp().solve_exact();
         ++out.lps;
         out.status = exact.status == LpStatus::infeasible ? OrthantStatus::empty : OrthantStatus::unknown;
         return out;
@@ -251,7 +329,7 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
       const double mhi = factor * w + 1e-8 * (1 + std::abs(out.float_hi[j]));
       xlo[j] = is_zero_face(s, j, true) ? 0.0 : out.float_lo[j] - mlo;
       xhi[j] = is_zero_face(s, j, false) ? 0.0 : out.float_hi[j] + mhi;
-      o.lp.set_variable_bounds(j, xlo[j], xhi[j]);
+      o.lp().set_variable_bounds(j, xlo[j], xhi[j]);
     }
     bool ok = true;
     Eigen::VectorXd slo(p), shi(p);
@@ -260,14 +338,30 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
         // An unbounded end stays infinite: nothing to certify.
         if (sense == Sense::minimize && std::isinf(out.float_lo[l])) { slo[l] = -inf; continue; }
         if (sense == Sense::maximize && std::isinf(out.float_hi[l])) { shi[l] = inf; continue; }
-        o.lp.set_objective_coordinate(l, sense);
-        const LpSolution sol = o.lp.solve();
-        ++out.lps;
+        // Over the working set only: a relaxation, so the safe bound holds for the full set,
+        // and phase 1 made the relaxation's optimum the full one.
+        o.lp().set_objective_coordinate(l, sense);
+        // Any multipliers give a valid bound: first try phase 1's duals (zero for rows added
+        // later) with the box X, which saves a re-solve whenever they certify the end.
+        LpSolution sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))];
+        if (sol.status == LpStatus::optimal) {
+          const Eigen::Index m_before = sol.row_dual.size();
+          sol.row_dual.conservativeResize(o.lp().num_rows());
+          sol.row_dual.tail(o.lp().num_rows() - m_before).setZero();
+          const double b = o.lp().safe_bound(sol);
+          const bool inside = sense == Sense::minimize ? (b > xlo[l] || is_zero_face(s, l, true))
+                                                       : (b < xhi[l] || is_zero_face(s, l, false));
+          if (!inside) sol.status = LpStatus::infeasible;  // fall back to a re-solve below
+        }
+        if (sol.status != LpStatus::optimal) {
+          sol = o.lp().solve();
+          ++out.lps;
+        }
         if (sol.status != LpStatus::optimal) {
           ok = false;
           break;
         }
-        const double bound = o.lp.safe_bound(sol);
+        const double bound = o.lp().safe_bound(sol);
         if (sense == Sense::minimize) {
           slo[l] = bound;
           if (!(bound > xlo[l] || is_zero_face(s, l, true))) ok = false;
@@ -341,9 +435,9 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
   };
 
   if (!fps.has_interval_regressors()) {
-    absorb({}, solve_orthant(fps, {}, options.safe));
+    absorb({}, solve_orthant(fps, {}, options));
   } else if (options.orthants == OrthantSelection::all) {
-    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options.safe));
+    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options));
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
     // (theta_l = 0), the set may continue into the orthant across that face.
@@ -352,7 +446,7 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
     while (!queue.empty()) {
       Orthant s = queue.front();
       queue.pop_front();
-      const OrthantOutcome oc = solve_orthant(fps, s, options.safe);
+      const OrthantOutcome oc = solve_orthant(fps, s, options);
       absorb(s, oc);
       if (oc.status != OrthantStatus::feasible) continue;
       double scale = 1;
@@ -372,7 +466,7 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
     // An empty starting orthant says nothing about the others: fall back to all of them.
     if (!any_feasible && p <= 16) {
       for (const Orthant& s : all_orthants(p))
-        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options.safe));
+        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options));
     }
   }
 
