@@ -265,16 +265,17 @@ Eigen::MatrixXd boxed_generators(const Eigen::MatrixXd& R) {
 }
 
 // Sum over the columns of R of |(X R)_ij| + dev ||R_j||: an upper bound on the row sums of
-// |T^{-1} R| when ||T^{-1} - X||_2 <= dev.
+// |T^{-1} R| when ||T^{-1} - X||_2 <= dev. X R in floating point plus Higham's product bound.
 Eigen::VectorXd frame_half_widths(const Eigen::MatrixXd& X, double dev, const Eigen::MatrixXd& R) {
-  const IntervalMatrix XR = detail::multiply(detail::im(X), detail::im(R));
+  const Eigen::MatrixXd XR = X * R;
+  const Eigen::MatrixXd err = product_error(X, R);
+  Eigen::VectorXd col(R.cols());
+  for (Eigen::Index j = 0; j < R.cols(); ++j)
+    col[j] = (Interval(dev) * Interval(detail::norm_upper(detail::iv(R.col(j))))).upper();
   Eigen::VectorXd s(R.rows());
   for (Eigen::Index i = 0; i < R.rows(); ++i) {
     Interval acc(0.0);
-    for (Eigen::Index j = 0; j < R.cols(); ++j) {
-      const double mag = std::max(std::abs(XR(i, j).lower()), std::abs(XR(i, j).upper()));
-      acc += Interval(mag) + Interval(dev) * Interval(detail::norm_upper(detail::iv(R.col(j))));
-    }
+    for (Eigen::Index j = 0; j < R.cols(); ++j) acc += Interval(std::abs(XR(i, j))) + Interval(err(i, j)) + Interval(col[j]);
     s[i] = acc.upper();
   }
   return s;
