@@ -193,11 +193,12 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
       *c.model.derivative(v) = subtract_force(text, c.term);
       out.push_back(std::move(c));
     };
-    make("coulomb_friction", {{"Fc", 0.0, force, -1e300}}, [&](auto& n) { return n[0] + "*sign(" + v + ")"; });
-    make("stribeck_friction", {{"Fc", 0.0, force, -1e300}, {"Fs", 0.0, force, -1e300}, {"vs", 0.3 * vrms, vrms, 1e-9 * vrms}},
+    // Friction and drag dissipate: their coefficients are >= 0 (a negative one is not that effect).
+    make("coulomb_friction", {{"Fc", 0.0, force, 0.0}}, [&](auto& n) { return n[0] + "*sign(" + v + ")"; });
+    make("stribeck_friction", {{"Fc", 0.0, force, 0.0}, {"Fs", 0.0, force, 0.0}, {"vs", 0.3 * vrms, vrms, 1e-9 * vrms}},
          [&](auto& n) { return "sign(" + v + ")*(" + n[0] + " + " + n[1] + "*exp(-(" + v + "/" + n[2] + ")^2))"; });
-    make("viscous_friction", {{"Fv", 0.0, force / vrms, -1e300}}, [&](auto& n) { return n[0] + "*" + v; });
-    make("quadratic_drag", {{"Cd", 0.0, force / (vrms * vrms), -1e300}},
+    make("viscous_friction", {{"Fv", 0.0, force / vrms, 0.0}}, [&](auto& n) { return n[0] + "*" + v; });
+    make("quadratic_drag", {{"Cd", 0.0, force / (vrms * vrms), 0.0}},
          [&](auto& n) { return n[0] + "*" + v + "*abs(" + v + ")"; });
     make("constant_offset", {{"offset", 0.0, force, -1e300}}, [&](auto& n) { return n[0]; });
     make("cubic_stiffness", {{"k3", 0.0, force / (qrms * qrms * qrms), -1e300}},
