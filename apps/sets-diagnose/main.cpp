@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
   CLI::App app{"sets-diagnose: locate where a model and recordings differ, name the missing physics, add it, "
                "and show the fit improve"};
   std::string model_path, data_path, val_path, json_path, report_dir;
-  bool example = false, quiet = false;
+  bool example = false, quiet = false, suite = false;
   int threads = 2;
   app.add_option("--model", model_path, "model file (JSON, format version 1; see docs/model-format.md)");
   app.add_option("--data", data_path, "recording to calibrate and diagnose on (CSV with a header, or .mat)");
@@ -126,10 +126,37 @@ int main(int argc, char** argv) {
   app.add_option("--json", json_path, "write the diagnosis as JSON here");
   app.add_option("--report", report_dir, "write plots (PNG via gnuplot), report.txt and augmented_model.json here");
   app.add_flag("--example", example, "diagnose a built-in simulated example (no files needed)");
+  app.add_flag("--suite", suite, "diagnose every synthetic plant and print the confusion table (markdown)");
   app.add_option("--threads", threads, "threads for the competing hypotheses")->check(CLI::Range(1, 64));
   app.add_flag("--quiet", quiet, "no progress messages on stderr");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (suite) {
+      // Every plant of the suite: true effect against the first effect named.
+      std::cout << "| plant | true effect | named (ranked) | right | nominal fit (val) | augmented fit (val) | s |\n"
+                   "| --- | --- | --- | --- | --- | --- | --- |\n";
+      int right = 0, total = 0, clean = 0, clean_ok = 0;
+      for (const auto& name : synthetic_plant_names()) {
+        const SyntheticPlant p = synthetic_plant(name);
+        DiagnosisOptions opt;
+        opt.threads = threads;
+        const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, opt);
+        std::string named;
+        for (const auto& e : d.effects) named += (named.empty() ? "" : ", ") + e.name;
+        if (named.empty()) named = "none";
+        const std::string first = d.effects.empty() ? "none" : d.effects.front().name;
+        const bool ok = first == p.true_effect;
+        ++total;
+        right += ok;
+        if (p.true_effect == "none") ++clean, clean_ok += ok;
+        char buf[256];
+        std::snprintf(buf, sizeof buf, " | %.1f | %.1f | %.1f |", d.fit_nominal_validation.at(0), d.fit_augmented_validation.at(0), d.seconds);
+        std::cout << "| " << name << " | " << p.true_effect << " | " << named << " | " << (ok ? "yes" : "**no**") << buf << "\n" << std::flush;
+      }
+      std::cout << "\nNamed right (first effect = true effect): " << right << " of " << total << "; clean plants with no invented effect: "
+                << clean_ok << " of " << clean << "\n";
+      return 0;
+    }
     ModelFile model;
     Recording est, val;
     bool have_val = false;
