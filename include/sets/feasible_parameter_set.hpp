@@ -70,6 +70,7 @@ struct PuiOptions {
   OrthantSelection orthants = OrthantSelection::remark2;
   bool safe = true;           // certify every end with a Neumaier–Shcherbina safe bound
   double zero_tolerance = 1e-9;  // relative: a bound this close to 0 extends to the next orthant
+  bool warm_start = true;     // re-solve from the previous basis (false: cold start, for benchmarks)
 };
 
 enum class OrthantStatus { feasible, empty, unknown };
