@@ -110,7 +110,11 @@ std::string fixed1(double x) {
 Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording* val, const DiagnosisOptions& opt) {
   const auto t_start = std::chrono::steady_clock::now();
   auto say = [&](const std::string& s) {
-    if (opt.progress) opt.progress(s);
+    if (!opt.progress) return;
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(1)
+       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count() << " s: " << s;
+    opt.progress(os.str());
   };
   Diagnosis d;
   d.has_validation = val != nullptr;
@@ -396,7 +400,22 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
         auto it = best_delay.find(c.equation);
         if (it == best_delay.end() || cost < it->second.first) best_delay.insert_or_assign(c.equation, std::make_pair(cost, c));
       }
-      for (auto& [a, bc] : best_delay) kept.push_back(bc.second);
+      // The grid is coarse: try every whole number of samples between the best one's neighbours.
+      static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
+      for (auto& [a, bc] : best_delay) {
+        const int n0 = bc.second.delay_samples;
+        const auto it = std::find(grid.begin(), grid.end(), n0);
+        const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
+        const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 : *(it + 1) - 1;
+        for (int n = lo; n <= hi; ++n) {
+          if (n == n0 || n >= N / 10) continue;
+          Candidate c = delay_candidate(current, a, n);
+          Simulator s(c.model, est, {opt.screening_substeps});
+          const auto r = evaluate(s, values_of(c.model));
+          if (r.ok && cost_of(r.fit) < bc.first) bc = {cost_of(r.fit), c};
+        }
+        kept.push_back(bc.second);
+      }
       cands = std::move(kept);
     }
     say("round " + std::to_string(round + 1) + ": calibrating " + std::to_string(cands.size()) + " competing hypotheses");
@@ -408,6 +427,9 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
         Trial t;
         t.cand = cands[i];
         try {
+          if (t.cand.restart)
+            for (auto& q : t.cand.model.parameters)
+              if (const auto* orig = model.parameter(q.name); orig && !q.fixed) q.value = orig->value;
           Simulator s(t.cand.model, est, {opt.screening_substeps});
           const std::vector<int> fr = s.free_parameters();
           auto ks = known_scales;

@@ -108,6 +108,18 @@ Eigen::VectorXd rate(const Eigen::VectorXd& x, double Ts) {
 
 }  // namespace
 
+Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
+  Candidate c;
+  c.effect = "time_delay";
+  c.equation = a;
+  c.term = "prev(" + a + ", " + std::to_string(n) + ")";
+  c.model = model;
+  c.delay_samples = n;
+  for (auto& d : c.model.derivatives) d.second = replace_symbol(d.second, a, c.term);
+  for (auto& d : c.model.signals) d.second = replace_symbol(d.second, a, c.term);
+  return c;
+}
+
 ModelStructure analyse_structure(const ModelFile& model) {
   ModelStructure s;
   std::set<std::string> positions;
@@ -270,9 +282,7 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
     if (!excluded("time_delay"))
       for (int n : {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64}) {
         if (n >= N / 10) break;
-        Candidate c{"time_delay", a, "prev(" + a + ", " + std::to_string(n) + ")", {}, {}, model, n};
-        rewire(c, c.term);
-        out.push_back(std::move(c));
+        out.push_back(delay_candidate(model, a, n));
       }
   }
   // --- sensors
@@ -304,8 +314,11 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
       c.term = "max(" + y + " - " + w + ", min(" + y + " + " + w + ", prev(" + s + ", 1)))";
     });
     // A mirror only makes sense if the data stay non-negative while the model goes negative.
-    if (lo > -0.02 * range && yy.minCoeff() < -0.05 * range)
-      sensor("absolute_value_sensor", "_abs", [&](Candidate& c, const std::string&) { c.term = "abs(" + y + ")"; });
+    if (lo > -0.02 * range && yy.minCoeff() < 0)
+      sensor("absolute_value_sensor", "_abs", [&](Candidate& c, const std::string&) {
+        c.term = "abs(" + y + ")";
+        c.restart = true;
+      });
   }
   return out;
 }

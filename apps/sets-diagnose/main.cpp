@@ -126,6 +126,8 @@ int main(int argc, char** argv) {
   app.add_option("--json", json_path, "write the diagnosis as JSON here");
   app.add_option("--report", report_dir, "write plots (PNG via gnuplot), report.txt and augmented_model.json here");
   app.add_flag("--example", example, "diagnose a built-in simulated example (no files needed)");
+  std::string plant;
+  app.add_option("--plant", plant, "with --suite: only this synthetic plant (prints its full report)");
   app.add_flag("--suite", suite, "diagnose every synthetic plant and print the confusion table (markdown)");
   app.add_option("--threads", threads, "threads for the competing hypotheses")->check(CLI::Range(1, 64));
   app.add_flag("--quiet", quiet, "no progress messages on stderr");
@@ -137,10 +139,12 @@ int main(int argc, char** argv) {
                    "| --- | --- | --- | --- | --- | --- | --- |\n";
       int right = 0, total = 0, clean = 0, clean_ok = 0;
       for (const auto& name : synthetic_plant_names()) {
+        if (!plant.empty() && name != plant) continue;
         const SyntheticPlant p = synthetic_plant(name);
         DiagnosisOptions opt;
         opt.threads = threads;
         const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, opt);
+        if (!plant.empty()) std::cerr << diagnosis_text(d);
         std::string named;
         for (const auto& e : d.effects) named += (named.empty() ? "" : ", ") + e.name;
         if (named.empty()) named = "none";

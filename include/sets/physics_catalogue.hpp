@@ -30,7 +30,12 @@ struct Candidate {
   std::vector<double> scales;            // typical size of each new parameter
   ModelFile model;                       // the augmented model file
   int delay_samples = 0;                 // time_delay only
+  bool restart = false;  // calibrate from the file's values: the calibrated nominal may have been
+                         // pulled far off by the missing structure (e.g. a mirrored sensor)
 };
+
+/// The time_delay candidate for actuator `a` delayed by n samples.
+Candidate delay_candidate(const ModelFile& model, const std::string& actuator, int n);
 
 /// Structure the catalogue needs: which states are positions/velocities, which symbols drive
 /// the state equations (actuators), and typical sizes from a nominal simulation.
