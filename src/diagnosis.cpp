@@ -70,6 +70,8 @@ struct Trial {
   Candidate cand;
   ModelFile model;  // calibrated
   double cost = 1e300, cost_val = 1e300;
+  ModelFile neutral_model;           // the calibrated model with the effect switched off
+  double cost_neutral = 1e300, cost_neutral_val = 1e300;
   std::vector<double> fit, fit_val;
   bool ok = false;
 };
@@ -385,38 +387,41 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
       if (c == "stribeck_friction") exclude.push_back("coulomb_friction");
     }
     std::vector<Candidate> cands = generate_candidates(current, cur_res, est, exclude);
-    // Time delay: pick the best whole number of samples per actuator before calibrating.
+    // Time delay: rank the delays per actuator by simulation alone; the best four compete
+    // (calibrated like the others), the calibrated nominal may prefer a shorter one uncalibrated.
     {
+      // Ranked by a short calibration on the first fifth of the record (a delay shifts the
+      // optimum of the other parameters, so an uncalibrated ranking prefers too short a delay).
+      Recording head = est;
+      const std::size_t rows = static_cast<std::size_t>(std::max<Eigen::Index>(std::min<Eigen::Index>(N, 200), N / 5));
+      for (auto& c : head.columns) c.resize(rows);
       std::vector<Candidate> kept;
-      std::map<std::string, std::pair<double, Candidate>> best_delay;
-      for (auto& c : cands) {
-        if (c.effect != "time_delay") {
-          kept.push_back(std::move(c));
-          continue;
-        }
-        Simulator s(c.model, est, {opt.screening_substeps});
-        const auto r = evaluate(s, values_of(c.model));
-        const double cost = r.ok ? cost_of(r.fit) : 1e300;
-        auto it = best_delay.find(c.equation);
-        if (it == best_delay.end() || cost < it->second.first) best_delay.insert_or_assign(c.equation, std::make_pair(cost, c));
+      std::map<std::string, std::vector<std::pair<double, std::size_t>>> ranked;
+      for (std::size_t i = 0; i < cands.size(); ++i) {
+        if (cands[i].effect != "time_delay") continue;
+        if (cands[i].delay_samples >= static_cast<int>(rows) / 10) continue;
+        Simulator s(cands[i].model, head, {opt.screening_substeps});
+        CalibrationOptions o;
+        const auto fr = s.free_parameters();
+        o.scale = scales_for(cands[i].model, fr, known_scales);
+        o.max_evaluations = 10 * static_cast<int>(fr.size() + 1);
+        const auto r = calibrate(s, s.parameter_values(), fr, o);
+        ranked[cands[i].equation].push_back({r.ok ? r.cost : 1e300, i});
       }
-      // The grid is coarse: try every whole number of samples between the best one's neighbours.
-      static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
-      for (auto& [a, bc] : best_delay) {
-        const int n0 = bc.second.delay_samples;
-        const auto it = std::find(grid.begin(), grid.end(), n0);
-        const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
-        const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 : *(it + 1) - 1;
-        for (int n = lo; n <= hi; ++n) {
-          if (n == n0 || n >= N / 10) continue;
-          Candidate c = delay_candidate(current, a, n);
-          Simulator s(c.model, est, {opt.screening_substeps});
-          const auto r = evaluate(s, values_of(c.model));
-          if (r.ok && cost_of(r.fit) < bc.first) bc = {cost_of(r.fit), c};
-        }
-        kept.push_back(bc.second);
+      for (auto& [a, list] : ranked) {
+        std::sort(list.begin(), list.end());
+        for (std::size_t k = 0; k < std::min<std::size_t>(2, list.size()); ++k) kept.push_back(cands[list[k].second]);
       }
+      for (auto& c : cands)
+        if (c.effect != "time_delay") kept.push_back(std::move(c));
       cands = std::move(kept);
+    }
+    // The null hypothesis: the current model calibrated with the same budget. A hypothesis must
+    // beat it, so that a better optimum of the old parameters is not credited to a new effect.
+    {
+      Candidate null;
+      null.model = current;
+      cands.insert(cands.begin(), null);
     }
     say("round " + std::to_string(round + 1) + ": calibrating " + std::to_string(cands.size()) + " competing hypotheses");
     std::vector<Trial> trials(cands.size());
@@ -450,6 +455,19 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
               t.cost_val = rv.ok ? rv.cost : 1e300;
               t.fit_val = rv.fit;
             }
+            // The same parameters with the effect switched off: what the effect itself contributes.
+            if (!t.cand.parameters.empty()) {
+              t.neutral_model = t.model;
+              for (std::size_t k = 0; k < t.cand.parameters.size(); ++k)
+                if (!std::isnan(t.cand.neutral[k])) t.neutral_model.parameter(t.cand.parameters[k])->value = t.cand.neutral[k];
+              const auto rn = evaluate(s, values_of(t.neutral_model));
+              t.cost_neutral = rn.ok ? rn.cost : 1e300;
+              if (val && rn.ok) {
+                Simulator sv(t.neutral_model, *val, {opt.screening_substeps});
+                const auto rv = evaluate(sv, values_of(t.neutral_model));
+                t.cost_neutral_val = rv.ok ? rv.cost : 1e300;
+              }
+            }
           }
         } catch (const std::exception&) {
           t.ok = false;  // a hypothesis that cannot be simulated loses
@@ -463,12 +481,28 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
     for (auto& th : pool) th.join();
     // Acceptance: removes enough of the misfit, more than noise could, and (with a validation
     // record) also helps there.
+    if (trials.front().ok && trials.front().cost < cost_cur) {
+      cost_cur = trials.front().cost;
+      cost_cur_val = trials.front().cost_val;
+      current = trials.front().model;
+    }
+    // A hypothesis whose calibration merely found a better optimum of the old parameters (its own
+    // term switched off fits as well) shows a better baseline, not an effect.
+    for (std::size_t i = 1; i < trials.size(); ++i) {
+      const auto& t = trials[i];
+      if (t.ok && t.cost_neutral < cost_cur && (!val || t.cost_neutral_val < 1e299)) {
+        cost_cur = t.cost_neutral;
+        cost_cur_val = val ? t.cost_neutral_val : 0;
+        current = t.neutral_model;
+      }
+    }
     std::vector<std::size_t> ok;
-    for (std::size_t i = 0; i < trials.size(); ++i) {
+    for (std::size_t i = 1; i < trials.size(); ++i) {
       const auto& t = trials[i];
       if (!t.ok) continue;
       const double gain = (cost_cur - t.cost) / cost_cur;
       if (gain < opt.min_cost_reduction || cost_cur - t.cost < floor_cost) continue;
+      if (t.cost_neutral < 1e299 && (t.cost_neutral - t.cost) / t.cost_neutral < opt.min_cost_reduction) continue;
       if (val && (cost_cur_val - t.cost_val) / cost_cur_val < 0.5 * opt.min_cost_reduction) continue;
       ok.push_back(i);
     }
@@ -483,6 +517,38 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
           (trials[i].cand.parameters.size() < trials[pick].cand.parameters.size() ||
            (trials[i].cand.parameters.size() == trials[pick].cand.parameters.size() && judged(i) < judged(pick))))
         pick = i;
+    if (trials[pick].cand.effect == "time_delay") {
+      // The grid is coarse: try every whole number of samples between the chosen one's neighbours.
+      static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
+      Trial& t = trials[pick];
+      const int n0 = t.cand.delay_samples;
+      const auto it = std::find(grid.begin(), grid.end(), n0);
+      const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
+      const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 : *(it + 1) - 1;
+      for (int n = lo; n <= hi; ++n) {
+        if (n == n0 || n >= N / 10) continue;
+        Candidate c = delay_candidate(current, t.cand.equation, n);
+        for (auto& q : c.model.parameters) q.value = t.model.parameter(q.name)->value;
+        Simulator s(c.model, est, {opt.screening_substeps});
+        CalibrationOptions o;
+        const auto fr = s.free_parameters();
+        o.scale = scales_for(c.model, fr, known_scales);
+        o.max_evaluations = 10 * static_cast<int>(fr.size() + 1);
+        const auto r = calibrate(s, s.parameter_values(), fr, o);
+        if (r.ok && r.cost < t.cost) {
+          t.cand = c;
+          t.model = c.model;
+          store_values(t.model, r.parameters);
+          t.cost = r.cost;
+          t.fit = r.fit;
+          if (val) {
+            Simulator sv(t.model, *val, {opt.screening_substeps});
+            const auto rv = evaluate(sv, r.parameters);
+            t.cost_val = rv.ok ? rv.cost : 1e300;
+          }
+        }
+      }
+    }
     const Trial& t = trials[pick];
     DiagnosedEffect e;
     e.name = t.cand.effect;
@@ -494,7 +560,7 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
     ev << "adding " << t.cand.term << " to " << t.cand.equation << " removes " << fixed1(100 * e.cost_reduction_estimation)
        << " % of the squared misfit on the estimation record";
     if (val) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
-    ev << " (best of " << trials.size() << " competing hypotheses";
+    ev << " (best of " << trials.size() - 1 << " competing hypotheses";
     if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the simpler explanation";
     ev << ")";
     if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
@@ -573,8 +639,10 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
           if (current.parameters[static_cast<std::size_t>(fr[i])].name != pn) continue;
           const auto ii = static_cast<Eigen::Index>(i);
           ep.estimate = r.parameters[fr[i]];
-          ep.lo = have_pui ? ep.estimate + pr.box[ii].lower() : -inf;
-          ep.hi = have_pui ? ep.estimate + pr.box[ii].upper() : inf;
+          // The parameter's own bounds (min/max) hold too, so the interval is cut to them.
+          const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
+          ep.lo = std::max(have_pui ? ep.estimate + pr.box[ii].lower() : -inf, mp.min);
+          ep.hi = std::min(have_pui ? ep.estimate + pr.box[ii].upper() : inf, mp.max);
           const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
           ep.stat_lo = ep.estimate - 1.96 * sd;
           ep.stat_hi = ep.estimate + 1.96 * sd;

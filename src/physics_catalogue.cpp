@@ -165,7 +165,8 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
     Ts = *model.sample_time;
   }
   auto add_param = [](Candidate& c, const std::string& name, double value, double scale, double lo = -1e300,
-                      double hi = 1e300) {
+                      double hi = 1e300, double neutral = 0.0) {
+    c.neutral.push_back(neutral);
     ModelParameter p;
     p.name = name;
     p.value = value;
@@ -202,6 +203,7 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
         add_param(c, names.back(), val, sc, lo);
       }
       c.term = term_of(names);
+      if (effect == "stribeck_friction") c.neutral[2] = std::nan("");  // vs: irrelevant once Fc = Fs = 0
       *c.model.derivative(v) = subtract_force(text, c.term);
       out.push_back(std::move(c));
     };
@@ -250,9 +252,9 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
       for (auto& d : c.model.signals) d.second = replace_symbol(d.second, a, by);
     };
     if (!excluded("input_saturation")) {
-      Candidate c{"input_saturation", a, "", {}, {}, model, 0};
+      Candidate c{"input_saturation", a, "", {}, {}, {}, model, 0};
       const std::string p = fresh_name(c.model, a + "_max");
-      add_param(c, p, 0.9 * amax, amax, 0.0);
+      add_param(c, p, 0.9 * amax, amax, 0.0, 1e300, 1e300);
       const std::string s = fresh_name(c.model, a + "_sat");
       c.term = "min(max(" + a + ", -" + p + "), " + p + ")";
       c.model.sampled.emplace_back(s, c.term);
@@ -260,7 +262,7 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
       out.push_back(std::move(c));
     }
     if (!excluded("dead_zone")) {
-      Candidate c{"dead_zone", a, "", {}, {}, model, 0};
+      Candidate c{"dead_zone", a, "", {}, {}, {}, model, 0};
       const std::string p = fresh_name(c.model, a + "_dz");
       add_param(c, p, 0.02 * amax, 0.1 * amax, 0.0);
       const std::string s = fresh_name(c.model, a + "_eff");
@@ -270,7 +272,7 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
       out.push_back(std::move(c));
     }
     if (!excluded("backlash")) {
-      Candidate c{"backlash", a, "", {}, {}, model, 0};
+      Candidate c{"backlash", a, "", {}, {}, {}, model, 0};
       const std::string p = fresh_name(c.model, a + "_play");
       add_param(c, p, 0.02 * amax, 0.1 * amax, 0.0);
       const std::string s = fresh_name(c.model, a + "_bl");
@@ -294,7 +296,7 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
     const Eigen::VectorXd yy = nominal.series(y);
     auto sensor = [&](const std::string& effect, const std::string& suffix, auto setup) {
       if (excluded(effect)) return;
-      Candidate c{effect, y, "", {}, {}, model, 0};
+      Candidate c{effect, y, "", {}, {}, {}, model, 0};
       const std::string s = fresh_name(c.model, y + suffix);
       setup(c, s);
       c.model.sampled.emplace_back(s, c.term);
@@ -303,9 +305,9 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
     };
     sensor("output_saturation", "_sensor", [&](Candidate& c, const std::string&) {
       const std::string a = fresh_name(c.model, y + "_lo");
-      add_param(c, a, lo, range);
+      add_param(c, a, lo, range, -1e300, 1e300, -1e300);
       const std::string b = fresh_name(c.model, y + "_hi");
-      add_param(c, b, hi, range);
+      add_param(c, b, hi, range, -1e300, 1e300, 1e300);
       c.term = "min(max(" + y + ", " + a + "), " + b + ")";
     });
     sensor("hysteresis", "_h", [&](Candidate& c, const std::string& s) {

@@ -28,6 +28,7 @@ struct Candidate {
   std::string term;                      // the term as written into the model
   std::vector<std::string> parameters;   // new parameter names (in the augmented model)
   std::vector<double> scales;            // typical size of each new parameter
+  std::vector<double> neutral;           // values of the new parameters that switch the effect off
   ModelFile model;                       // the augmented model file
   int delay_samples = 0;                 // time_delay only
   bool restart = false;  // calibrate from the file's values: the calibrated nominal may have been
