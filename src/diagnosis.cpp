@@ -376,9 +376,9 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
   std::vector<std::string> chosen;
   std::vector<std::pair<std::string, double>> known_scales;
   std::vector<Candidate> chosen_candidates;
-  d.nothing_missing = nominal_cost <= 1.5 * floor_cost;
+  d.nothing_missing = nominal_cost <= opt.noise_floor_factor * floor_cost;
   for (int round = 0; round < opt.max_effects && !d.nothing_missing; ++round) {
-    if (cost_cur <= 1.5 * floor_cost) break;
+    if (cost_cur <= opt.noise_floor_factor * floor_cost) break;
     Simulator cur_sim(current, est, {opt.screening_substeps});
     const SimulationResult cur_res = cur_sim.simulate(values_of(current));
     std::vector<std::string> exclude = chosen;
@@ -658,9 +658,9 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
     d.augmented_validation = nominal_val_out;
   }
   if (d.effects.empty()) {
-    if (nominal_cost <= 1.5 * floor_cost || !d.nothing_missing) {
+    if (nominal_cost <= opt.noise_floor_factor * floor_cost || !d.nothing_missing) {
       // Either within the noise, or no catalogue effect helps: never invent one.
-      d.nothing_missing = nominal_cost <= 1.5 * floor_cost;
+      d.nothing_missing = nominal_cost <= opt.noise_floor_factor * floor_cost;
     }
     d.verdict = d.nothing_missing
                     ? "No physics is missing: the calibrated nominal model explains the data to within the noise."

@@ -127,6 +127,8 @@ int main(int argc, char** argv) {
   app.add_option("--report", report_dir, "write plots (PNG via gnuplot), report.txt and augmented_model.json here");
   app.add_flag("--example", example, "diagnose a built-in simulated example (no files needed)");
   std::string plant;
+  bool no_floor = false;
+  app.add_flag("--no-noise-floor", no_floor, "never stop early because the misfit is at the noise level (hypotheses must fail on their own)");
   app.add_option("--plant", plant, "with --suite: only this synthetic plant (prints its full report)");
   app.add_flag("--suite", suite, "diagnose every synthetic plant and print the confusion table (markdown)");
   app.add_option("--threads", threads, "threads for the competing hypotheses")->check(CLI::Range(1, 64));
@@ -143,6 +145,7 @@ int main(int argc, char** argv) {
         const SyntheticPlant p = synthetic_plant(name);
         DiagnosisOptions opt;
         opt.threads = threads;
+        if (no_floor) opt.noise_floor_factor = 0;
         const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, opt);
         if (!plant.empty()) std::cerr << diagnosis_text(d);
         std::string named;
@@ -186,6 +189,7 @@ int main(int argc, char** argv) {
     }
     DiagnosisOptions opt;
     opt.threads = threads;
+    if (no_floor) opt.noise_floor_factor = 0;
     if (!quiet) opt.progress = [](const std::string& s) { std::cerr << "[sets-diagnose] " << s << std::endl; };
     const Diagnosis d = diagnose(model, est, have_val ? &val : nullptr, opt);
     const std::string augmented_text = to_json_text(d.augmented);

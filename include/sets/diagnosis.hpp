@@ -22,6 +22,7 @@ struct DiagnosisOptions {
   int max_effects = 3;
   double min_cost_reduction = 0.10;  // a hypothesis must remove >= 10 % of the squared misfit
   double sparsity_tolerance = 1.25;  // a simpler hypothesis wins if its misfit is within this factor
+  double noise_floor_factor = 1.5;   // stop when the misfit is below this x the noise's own misfit (0: never)
   int threads = 2;
   std::function<void(const std::string&)> progress;  // one line per stage (optional)
 };
