@@ -19,6 +19,7 @@
 #include "sets/calibration.hpp"
 #include "sets/error.hpp"
 #include "sets/feasible_parameter_set.hpp"
+#include "sets/interval.hpp"
 #include "sets/linear_program.hpp"
 #include "sets/physics_catalogue.hpp"
 #include "sets/simulation.hpp"
@@ -109,19 +110,36 @@ std::string fixed1(double x) {
 
 }  // namespace
 
-Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording* val, const DiagnosisOptions& opt) {
+Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording* val, const DiagnosisOptions& options) {
   const auto t_start = std::chrono::steady_clock::now();
   auto say = [&](const std::string& s) {
-    if (!opt.progress) return;
+    if (!options.progress) return;
     std::ostringstream os;
     os << std::fixed << std::setprecision(1)
        << std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count() << " s: " << s;
-    opt.progress(os.str());
+    options.progress(os.str());
   };
   Diagnosis d;
   d.has_validation = val != nullptr;
-  Simulator fast(model, est, {opt.screening_substeps});
+  DiagnosisOptions opt = options;
   Simulator exact(model, est, {opt.final_substeps});
+  if (opt.screening_substeps <= 0) {
+    // Screening runs thousands of simulations: use the coarsest step that gives the same fits.
+    const auto ref = evaluate(exact, exact.parameter_values());
+    opt.screening_substeps = opt.final_substeps;
+    for (int sub : {1, 2, 5}) {
+      if (sub >= opt.final_substeps || !ref.ok) break;
+      Simulator s(model, est, {sub});
+      const auto r = evaluate(s, s.parameter_values());
+      bool same = r.ok;
+      for (std::size_t j = 0; same && j < r.fit.size(); ++j) same = std::abs(r.fit[j] - ref.fit[j]) < 0.2;
+      if (same) {
+        opt.screening_substeps = sub;
+        break;
+      }
+    }
+  }
+  Simulator fast(model, est, {opt.screening_substeps});
   std::unique_ptr<Simulator> exact_val;
   if (val) exact_val = std::make_unique<Simulator>(model, *val, SimulationOptions{opt.final_substeps});
   d.outputs = exact.output_columns();
@@ -138,7 +156,8 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
   }
   const std::vector<int> free0 = fast.free_parameters();
   for (int i : free0) d.free_nominal.push_back(model.parameters[static_cast<std::size_t>(i)].name);
-  say("calibrating the nominal model's free parameters");
+  say("calibrating the nominal model's free parameters (" + std::to_string(opt.screening_substeps) +
+      " RK4 substeps while screening, " + std::to_string(opt.final_substeps) + " for reported fits)");
   CalibrationOptions copt;
   copt.scale = scales_for(model, free0, {});
   // Calibrated with the screening step; the reported fits below use the full substeps.
@@ -609,10 +628,13 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
       // 1.5 x the largest residual at the estimate: the true parameters see the noise itself, whose
       // largest value is about as large as the estimate's; the margin keeps them inside.
       delta = 1.5 * delta + 1e-300;
+      // Rows in units of the bound and columns in units of each parameter's scale keep the LP
+      // well conditioned (position residuals of 1e-6 m next to forces of 1e2 N otherwise).
       for (Eigen::Index i = 0; i < m; ++i) {
-        Phi.row(j * m + i) = J.row(j * N + i * stride);
-        yy[j * m + i] = Ra(i * stride, j);
-        dd[j * m + i] = delta;
+        for (Eigen::Index c = 0; c < J.cols(); ++c)
+          Phi(j * m + i, c) = J(j * N + i * stride, c) * o.scale[static_cast<std::size_t>(c)] / delta;
+        yy[j * m + i] = Ra(i * stride, j) / delta;
+        dd[j * m + i] = 1.0;
         Jw.row(j * m + i) = J.row(j * N + i * stride) / norm[static_cast<std::size_t>(j)];
         rw[j * m + i] = Ra(i * stride, j) / norm[static_cast<std::size_t>(j)];
       }
@@ -625,9 +647,12 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
     try {
       pr = pui(FeasibleParameterSet::from_data(Phi, yy, dd));
       have_pui = !pr.empty;
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
       have_pui = false;
+      d.bound_note += std::string("; PUI computation failed: ") + e.what();
     }
+    if (!have_pui) d.bound_note += "; the linearised strips were found inconsistent, no PUI";
+    if (have_pui) d.bound_note += pr.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
     const double dof = std::max<double>(1.0, static_cast<double>(rw.size() - Jw.cols()));
     const double s2 = rw.squaredNorm() / dof;
     Eigen::MatrixXd cov = (Jw.transpose() * Jw).completeOrthogonalDecomposition().pseudoInverse() * s2;
@@ -641,8 +666,9 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
           ep.estimate = r.parameters[fr[i]];
           // The parameter's own bounds (min/max) hold too, so the interval is cut to them.
           const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
-          ep.lo = std::max(have_pui ? ep.estimate + pr.box[ii].lower() : -inf, mp.min);
-          ep.hi = std::min(have_pui ? ep.estimate + pr.box[ii].upper() : inf, mp.max);
+          const Interval theta = Interval(ep.estimate) + pr.box[ii] * o.scale[i];  // outward rounded
+          ep.lo = std::max(have_pui ? theta.lower() : -inf, mp.min);
+          ep.hi = std::min(have_pui ? theta.upper() : inf, mp.max);
           const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
           ep.stat_lo = ep.estimate - 1.96 * sd;
           ep.stat_hi = ep.estimate + 1.96 * sd;
