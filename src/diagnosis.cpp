@@ -512,7 +512,9 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
       if (t.ok && t.cost_neutral < cost_cur && (!val || t.cost_neutral_val < 1e299)) {
         cost_cur = t.cost_neutral;
         cost_cur_val = val ? t.cost_neutral_val : 0;
-        current = t.neutral_model;
+        // Keep the current structure (the switched-off term is dropped), take the better values.
+        for (auto& q : current.parameters)
+          if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
       }
     }
     std::vector<std::size_t> ok;
