@@ -78,6 +78,12 @@ double radius(const Interval& x) {
   return d.upper();
 }
 
+std::string to_string(const Interval& x) {
+  std::ostringstream s;
+  s << std::setprecision(17) << '[' << x.lower() << ", " << x.upper() << ']';
+  return s.str();
+}
+
 std::ostream& operator<<(std::ostream& os, const Interval& x) {
   std::ostringstream s;
   s << std::setprecision(os.precision()) << '[' << x.lower() << ", " << x.upper() << ']';

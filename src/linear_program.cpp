@@ -69,10 +69,8 @@ struct LinearProgram::Impl {
     glp_set_row_bnds(lp, i, glpk_bound_type(lo, hi), std::isinf(lo) ? 0.0 : lo,
                      std::isinf(hi) ? 0.0 : hi);
     rows.entries.push_back(std::move(entries));
-    rows.lo.conservativeResize(m());
-    rows.hi.conservativeResize(m());
-    rows.lo[m() - 1] = lo;
-    rows.hi[m() - 1] = hi;
+    rows.lo.push_back(lo);
+    rows.hi.push_back(hi);
   }
 };
 
@@ -166,13 +164,13 @@ int LinearProgram::add_rows(const Eigen::SparseMatrix<double, Eigen::RowMajor>& 
 void LinearProgram::set_row_bounds(int i, double lo, double hi) {
   if (i < 0 || i >= impl_->m()) throw InputError("LinearProgram: row index out of range");
   check_bounds(lo, hi, "LinearProgram row " + std::to_string(i));
-  impl_->rows.lo[i] = lo;
-  impl_->rows.hi[i] = hi;
+  impl_->rows.lo[static_cast<std::size_t>(i)] = lo;
+  impl_->rows.hi[static_cast<std::size_t>(i)] = hi;
   glp_set_row_bnds(impl_->lp, i + 1, glpk_bound_type(lo, hi), std::isinf(lo) ? 0.0 : lo,
                    std::isinf(hi) ? 0.0 : hi);
 }
-double LinearProgram::row_lower(int i) const { return impl_->rows.lo[i]; }
-double LinearProgram::row_upper(int i) const { return impl_->rows.hi[i]; }
+double LinearProgram::row_lower(int i) const { return impl_->rows.lo.at(static_cast<std::size_t>(i)); }
+double LinearProgram::row_upper(int i) const { return impl_->rows.hi.at(static_cast<std::size_t>(i)); }
 const std::vector<std::pair<int, double>>& LinearProgram::row(int i) const {
   return impl_->rows.entries.at(static_cast<std::size_t>(i));
 }
@@ -211,6 +209,13 @@ LpSolution LinearProgram::solve() {
     // Recover once from a bad or ill-conditioned basis: scale, rebuild the basis, primal simplex.
     glp_scale_prob(lp, GLP_SF_AUTO);
     glp_adv_basis(lp, 0);
+    parm.meth = GLP_PRIMAL;
+    rc = glp_simplex(lp, &parm);
+  }
+  if (rc == 0 && glp_get_status(lp) != GLP_OPT && glp_get_status(lp) != GLP_NOFEAS &&
+      glp_get_status(lp) != GLP_UNBND) {
+    // The dual simplex stops without a verdict when the problem is unbounded (it cannot prove
+    // that); the primal simplex from the current basis can.
     parm.meth = GLP_PRIMAL;
     rc = glp_simplex(lp, &parm);
   }

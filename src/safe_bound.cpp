@@ -37,10 +37,10 @@ double safe_lower_bound(const Eigen::Ref<const Eigen::VectorXd>& c, const LpRows
                         const Eigen::Ref<const Eigen::VectorXd>& col_hi,
                         const Eigen::Ref<const Eigen::VectorXd>& y) {
   const auto m = static_cast<Eigen::Index>(rows.entries.size());
-  if (y.size() != m || rows.lo.size() != m || rows.hi.size() != m || col_lo.size() != c.size() ||
+  if (y.size() != m || static_cast<Eigen::Index>(rows.lo.size()) != m ||
+      static_cast<Eigen::Index>(rows.hi.size()) != m || col_lo.size() != c.size() ||
       col_hi.size() != c.size())
     throw InputError("safe_lower_bound: dimensions do not match");
-  Interval::traits_type::rounding rnd;  // keeps the rounding mode for the whole evaluation
   // r = c - A^T y, enclosed.
   std::vector<Interval> r(static_cast<std::size_t>(c.size()));
   for (Eigen::Index j = 0; j < c.size(); ++j) r[static_cast<std::size_t>(j)] = Interval(c[j]);
@@ -50,7 +50,8 @@ double safe_lower_bound(const Eigen::Ref<const Eigen::VectorXd>& c, const LpRows
     if (yi == 0 || std::isnan(yi)) continue;
     for (const auto& [j, a] : rows.entries[static_cast<std::size_t>(i)])
       r[static_cast<std::size_t>(j)] -= Interval(a) * Interval(yi);
-    double term = inf_product(Interval(yi), rows.lo[i], rows.hi[i]);
+    const auto k = static_cast<std::size_t>(i);
+    double term = inf_product(Interval(yi), rows.lo[k], rows.hi[k]);
     if (term == -kInf) return -kInf;
     total += Interval(term);
   }

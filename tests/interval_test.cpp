@@ -215,3 +215,31 @@ TEST(IntervalMatrix, ProductEnclosesPointProducts) {
     }
   EXPECT_THROW(sets::make_box(hi, lo), std::invalid_argument);
 }
+
+#if defined(__x86_64__)
+#include <xmmintrin.h>
+
+namespace {
+// Rounding-control bits of the two floating-point units on x86-64: SSE (MXCSR bits 13-14, what
+// double arithmetic uses) and x87 (control word bits 10-11, what long double uses).
+unsigned sse_rounding() { return (_mm_getcsr() >> 13) & 3u; }
+unsigned x87_rounding() {
+  unsigned short cw = 0;
+  __asm__ volatile("fnstcw %0" : "=m"(cw));
+  return (cw >> 10) & 3u;
+}
+}  // namespace
+
+TEST(Interval, RoundingControlSetsBothSseAndX87AndRestoresThem) {
+  ASSERT_EQ(sse_rounding(), 0u) << "tests must start in round-to-nearest";
+  ASSERT_EQ(x87_rounding(), 0u);
+  {
+    Interval::traits_type::rounding scope;  // what every interval operation creates
+    scope.upward();
+    EXPECT_EQ(sse_rounding(), 2u) << "SSE not switched to upward";
+    EXPECT_EQ(x87_rounding(), 2u) << "x87 not switched to upward";
+  }
+  EXPECT_EQ(sse_rounding(), 0u) << "SSE rounding mode not restored";
+  EXPECT_EQ(x87_rounding(), 0u) << "x87 rounding mode not restored";
+}
+#endif

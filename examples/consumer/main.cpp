@@ -9,6 +9,6 @@ int main() {
   Eigen::VectorXd y(3), delta = Eigen::VectorXd::Constant(3, 0.1);
   y << 1.0, 2.1, 2.9;
   const auto r = sets::pui(sets::FeasibleParameterSet::from_data(Phi, y, delta));
-  std::cout << "consumer: theta in " << r.box[0] << (r.guaranteed ? " (guaranteed)" : "") << '\n';
+  std::cout << "consumer: theta in " << sets::to_string(r.box[0]) << (r.guaranteed ? " (guaranteed)" : "") << '\n';
   return r.guaranteed && r.box[0].lower() <= 1.0 && 1.0 <= r.box[0].upper() ? 0 : 1;
 }

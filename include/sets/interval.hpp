@@ -101,6 +101,9 @@ Interval pow(const Interval& x, const Interval& p);
 double midpoint(const Interval& x);
 double radius(const Interval& x);  // rounded up: [mid - rad, mid + rad] contains x
 
+/// "[lo, hi]" with enough digits to round-trip. (Interval is a Boost type, so the stream
+/// operator below is found only inside namespace sets or with `using sets::operator<<;`.)
+std::string to_string(const Interval& x);
 std::ostream& operator<<(std::ostream& os, const Interval& x);
 
 }  // namespace sets

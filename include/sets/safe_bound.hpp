@@ -18,7 +18,7 @@ namespace sets {
 
 struct LpRows {
   std::vector<std::vector<std::pair<int, double>>> entries;  // sparse rows of A
-  Eigen::VectorXd lo, hi;                                     // row bounds (may be infinite)
+  std::vector<double> lo, hi;                                 // row bounds (may be infinite)
 };
 
 /// Rigorous lower bound on min c^T x over the LP's feasible set, from multipliers y.

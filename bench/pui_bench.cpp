@@ -1,0 +1,45 @@
+// PUIs of a p = 6 bounded-error problem with N = 10^3, 10^4, 10^5 strips: cold versus warm
+// start, with and without safe bounds.
+//   ./build/bench/pui_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "sets/feasible_parameter_set.hpp"
+
+namespace {
+
+sets::FeasibleParameterSet make_fps(int N) {
+  const int p = 6;
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::VectorXd theta(p);
+  theta << 0.5, -0.2, 0.3, 0.1, 1.0, 0.2;
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::NullaryExpr(N, p, [&] { return U(rng); });
+  Eigen::VectorXd delta = Eigen::VectorXd::Constant(N, 0.05);
+  Eigen::VectorXd y = Phi * theta + Eigen::VectorXd::NullaryExpr(N, [&] { return 0.05 * U(rng); });
+  return sets::FeasibleParameterSet::from_data(Phi, y, delta);
+}
+
+void BM_Pui(benchmark::State& state) {
+  const auto fps = make_fps(static_cast<int>(state.range(0)));
+  sets::PuiOptions options;
+  options.warm_start = state.range(1) != 0;
+  options.safe = state.range(2) != 0;
+  for (auto _ : state) {
+    auto r = sets::pui(fps, options);
+    benchmark::DoNotOptimize(r.box);
+  }
+  state.SetLabel(std::string(options.warm_start ? "warm" : "cold") + (options.safe ? ",safe" : ",float"));
+}
+
+}  // namespace
+
+BENCHMARK(BM_Pui)
+    ->ArgsProduct({{1000, 10000, 100000}, {0, 1}, {0, 1}})
+    ->ArgNames({"N", "warm", "safe"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+BENCHMARK_MAIN();
