@@ -1,6 +1,6 @@
 // PUIs of Cerone–Regruto's LPV example (Section IV, lambda uniform, Delta E = 4.8e-3) on one core:
-// N = 1000 and N = 10^5 with the Remark-2 orthants (N = 1000 also with cold-started LPs), and
-// the interval regression (eqs. 18–34) on its own.
+// N = 1000 and N = 10^5 with the Remark-2 orthants, the same with every sample in every LP
+// (no working set), and the interval regression (eqs. 18–34) on its own.
 //
 //   ./build/bench/lpv_pui_bench --benchmark_repetitions=7 --benchmark_report_aggregates_only=true
 
@@ -40,7 +40,7 @@ sets::FeasibleParameterSet paper_fps(int N) {
 void BM_LpvPui(benchmark::State& state) {
   const auto fps = paper_fps(static_cast<int>(state.range(0)));
   sets::PuiOptions opt;
-  opt.warm_start = state.range(1) != 0;
+  opt.working_set = state.range(1) != 0;
   int lps = 0, orthants = 0;
   for (auto _ : state) {
     const auto r = sets::pui(fps, opt);
@@ -52,7 +52,7 @@ void BM_LpvPui(benchmark::State& state) {
   state.counters["LPs"] = lps;
   state.counters["orthants"] = orthants;
 }
-BENCHMARK(BM_LpvPui)->ArgNames({"N", "warm_start"})
+BENCHMARK(BM_LpvPui)->ArgNames({"N", "working_set"})
     ->Args({1000, 1})->Args({1000, 0})->Args({100000, 1})
     ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 

@@ -10,7 +10,6 @@
 
 #include "sets/error.hpp"
 #include "sets/linear_program.hpp"
-#include "sets/safe_bound.hpp"
 
 namespace sets {
 
@@ -60,8 +59,7 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  // Same checks as add_strip, but one allocation (add_strip's row-by-row growth is quadratic:
-  // minutes for N = 10^5).
+  // Same checks as add_strip, but one allocation (add_strip's row-by-row growth is quadratic).
   for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
     const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
     for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
@@ -175,116 +173,100 @@ HPolytope FeasibleParameterSet::orthant_polytope(const Orthant& s) const {
 
 namespace {
 
-// The orthant's constraints lo_i <= a_i^T theta <= hi_i (the primal rows of every PUI problem).
-LpRows orthant_rows_of(const FeasibleParameterSet& fps, const Orthant& s) {
-  LpRows rows;
-  Eigen::VectorXd lo_row, hi_row;
-  auto push = [&rows](const Eigen::VectorXd& a, double lo, double hi) {
-    std::vector<std::pair<int, double>> e;
-    for (Eigen::Index j = 0; j < a.size(); ++j)
-      if (a[j] != 0) e.emplace_back(static_cast<int>(j), a[j]);
-    rows.entries.push_back(std::move(e));
-    rows.lo.push_back(lo);
-    rows.hi.push_back(hi);
-  };
-  for (int t = 0; t < fps.size(); ++t) {
-    orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
-    const Interval& Y = fps.outputs()[t];
-    if (lo_row == hi_row) {
-      push(lo_row, Y.lower(), Y.upper());
-    } else {
-      push(lo_row, -inf, Y.upper());
-      push(hi_row, Y.lower(), inf);
-    }
-  }
-  return rows;
-}
-
-// The PUI problems  min c^T theta  s.t. the orthant's rows and a variable box. Most of the N rows
-// are slack at every PUI end, so the LP holds only a working set of rows: solve, check all rows
-// at the optimum (one cheap matrix-vector product), add the most violated ones, re-solve from the
-// same basis; stop when nothing is violated. GLPK then factorises a small basis instead of an
-// N x N one. Any safe bound of the working-set LP is a safe bound of the full problem (it is a
-// relaxation), and at convergence the two optima coincide.
+// The LP of one orthant piece. With many samples only a working set of them is in the LP
+// (constraint generation): after each solve the optimum is checked against every sample and the
+// most violated ones are added, until none is violated. A working set is a relaxation, so every
+// emptiness verdict and every safe bound it gives holds for the full set; and once no sample is
+// violated, the relaxation's optimum is the full optimum (tightness is not lost).
 class OrthantLp {
  public:
-  OrthantLp(const LpRows& rows, int p) : rows_(rows), p_(p), lp_(p), in_lp_(rows.entries.size(), 0) {
-    const auto m = static_cast<Eigen::Index>(rows.entries.size());
-    A_.setZero(m, p);
-    lo_.resize(m);
-    hi_.resize(m);
-    for (Eigen::Index i = 0; i < m; ++i) {
-      for (const auto& [j, a] : rows.entries[static_cast<std::size_t>(i)]) A_(i, j) = a;
-      lo_[i] = rows.lo[static_cast<std::size_t>(i)];
-      hi_[i] = rows.hi[static_cast<std::size_t>(i)];
+  OrthantLp(const FeasibleParameterSet& fps, const Orthant& s, bool working_set, bool warm)
+      : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(warm) {
+    const int p = fps.dimension(), N = fps.size();
+    for (int j = 0; j < p; ++j) {
+      if (s.empty()) continue;
+      if (s[static_cast<std::size_t>(j)] > 0)
+        lp_.set_variable_bounds(j, 0, inf);
+      else
+        lp_.set_variable_bounds(j, -inf, 0);
+    }
+    lo_.resize(N, p);
+    hi_.resize(N, p);
+    ylo_.resize(N);
+    yhi_.resize(N);
+    Eigen::VectorXd lo_row, hi_row;
+    for (int t = 0; t < N; ++t) {
+      orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
+      lo_.row(t) = lo_row.transpose();
+      hi_.row(t) = hi_row.transpose();
+      ylo_[t] = fps.outputs()[t].lower();
+      yhi_[t] = fps.outputs()[t].upper();
+    }
+    const int start = working_set ? std::min(N, 10 * p + 10) : N;
+    if (start == N) {
+      for (int t = 0; t < N; ++t) add_sample(t);
+    } else {
+      // An evenly spread starting set; the rest come in as they are violated.
+      for (int k = 0; k < start; ++k) add_sample(static_cast<int>(static_cast<long>(k) * N / start));
     }
   }
 
-  void set_box(const Eigen::VectorXd& xlo, const Eigen::VectorXd& xhi) {
-    for (int j = 0; j < p_; ++j) lp_.set_variable_bounds(j, xlo[j], xhi[j]);
-  }
+  LinearProgram& lp() { return lp_; }
+  bool complete() const { return added_ == static_cast<int>(in_.size()); }
 
-  struct Answer {
-    LpStatus status = LpStatus::optimal;
-    double value = 0;   // floating-point optimum of min sign * theta_l
-    double safe = -inf; // rigorous lower bound on it
-    Eigen::VectorXd theta;
-    int solves = 0;
-  };
-
-  /// min sign * theta_l over the full row set (by row generation) within the current box.
-  Answer minimise(int l, double sign, bool warm, bool want_safe) {
-    lp_.set_objective(Eigen::VectorXd::Unit(p_, l) * sign, Sense::minimize);
-    Answer a;
+  /// Solves the current objective over the full set: re-solves after adding violated samples.
+  LpSolution solve(int& lps) {
     for (;;) {
-      if (!warm) lp_.reset_basis();
-      const LpSolution sol = lp_.solve();
-      ++a.solves;
-      if (sol.status != LpStatus::optimal) {
-        a.status = sol.status;
-        a.value = sol.status == LpStatus::unbounded ? -inf : 0;
-        return a;
+      if (!warm_) lp_.reset_basis();
+      LpSolution sol = lp_.solve();
+      ++lps;
+      if (sol.status == LpStatus::infeasible || complete()) return sol;
+      if (sol.status == LpStatus::unbounded) {
+        // The relaxation may be unbounded where the full set is not: take every sample.
+        for (int t = 0; t < static_cast<int>(in_.size()); ++t)
+          if (!in_[static_cast<std::size_t>(t)]) add_sample(t);
+        continue;
       }
-      if (add_violated_rows(sol.x) == 0) {
-        a.value = sol.objective;
-        a.theta = sol.x;
-        if (want_safe) a.safe = lp_.safe_bound(sol);
-        return a;
-      }
+      if (add_violated(sol.x) == 0) return sol;
     }
   }
-
-  /// The working-set LP (a relaxation of the orthant's constraints), for certifying emptiness.
-  LinearProgram& working_lp() { return lp_; }
 
  private:
-  // Adds up to a batch of the most violated rows at x; returns how many were added.
-  int add_violated_rows(const Eigen::VectorXd& x) {
-    const Eigen::VectorXd v = A_ * x;
-    std::vector<std::pair<double, Eigen::Index>> violated;
-    for (Eigen::Index i = 0; i < v.size(); ++i) {
-      if (in_lp_[static_cast<std::size_t>(i)]) continue;
-      const double scale = 1e-9 * (1 + std::abs(v[i]));
-      const double viol = std::max(lo_[i] - v[i], v[i] - hi_[i]);
-      if (viol > scale) violated.emplace_back(viol / (1 + A_.row(i).norm()), i);
+  void add_sample(int t) {
+    in_[static_cast<std::size_t>(t)] = 1;
+    ++added_;
+    const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
+    if (lo_row == hi_row) {
+      lp_.add_row(lo_row, ylo_[t], yhi_[t]);
+    } else {
+      lp_.add_row(lo_row, -inf, yhi_[t]);
+      lp_.add_row(hi_row, ylo_[t], inf);
     }
-    const std::size_t batch = std::min<std::size_t>(violated.size(), static_cast<std::size_t>(4 * p_ + 16));
-    std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(batch), violated.end(),
-                      [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (std::size_t k = 0; k < batch; ++k) {
-      const auto i = static_cast<std::size_t>(violated[k].second);
-      lp_.add_row(rows_.entries[i], rows_.lo[i], rows_.hi[i]);
-      in_lp_[i] = 1;
-    }
-    return static_cast<int>(batch);
   }
 
-  const LpRows& rows_;
-  int p_;
+  // Adds the samples the point x violates most; returns how many were added.
+  int add_violated(const Eigen::VectorXd& x) {
+    const Eigen::VectorXd a = lo_ * x, b = hi_ * x;
+    std::vector<std::pair<double, int>> violated;
+    for (Eigen::Index t = 0; t < a.size(); ++t) {
+      if (in_[static_cast<std::size_t>(t)]) continue;
+      const double v = std::max(a[t] - yhi_[t], ylo_[t] - b[t]);
+      const double tol = 1e-9 * (1 + std::abs(yhi_[t]) + std::abs(ylo_[t]));
+      if (v > tol) violated.emplace_back(v, static_cast<int>(t));
+    }
+    const std::size_t k = std::min<std::size_t>(violated.size(), 60 + 4 * static_cast<std::size_t>(x.size()));
+    std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(k), violated.end(),
+                      [](const auto& u, const auto& v) { return u.first > v.first; });
+    for (std::size_t i = 0; i < k; ++i) add_sample(violated[i].second);
+    return static_cast<int>(k);
+  }
+
   LinearProgram lp_;
-  std::vector<char> in_lp_;
-  Eigen::MatrixXd A_;
-  Eigen::VectorXd lo_, hi_;
+  std::vector<char> in_;
+  bool warm_;
+  int added_ = 0;
+  Eigen::MatrixXd lo_, hi_;  // orthant rows of every sample
+  Eigen::VectorXd ylo_, yhi_;
 };
 
 struct OrthantOutcome {
@@ -301,58 +283,34 @@ bool is_zero_face(const Orthant& s, int j, bool lower) {
   return lower ? s[static_cast<std::size_t>(j)] > 0 : s[static_cast<std::size_t>(j)] < 0;
 }
 
-// Certifies with GLPK's exact rational simplex that the working-set rows (a relaxation) have no
-// solution in the orthant; then the full set is empty too.
-OrthantStatus certify_empty(LinearProgram& working_set) {
-  return working_set.solve_exact().status == LpStatus::infeasible ? OrthantStatus::empty
-                                                                   : OrthantStatus::unknown;
-}
-
-OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, bool safe, bool warm) {
+OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options) {
+  const bool safe = options.safe;
   const int p = fps.dimension();
-  const LpRows rows = orthant_rows_of(fps, s);
-  OrthantLp lp(rows, p);
+  OrthantLp o(fps, s, options.working_set, options.warm_start);
   OrthantOutcome out;
   out.float_lo.resize(p);
   out.float_hi.resize(p);
   out.lower_points.resize(p, p);
   out.upper_points.resize(p, p);
-  // Phase 1: floating-point PUIs inside a large artificial box (so that the first working sets
-  // are bounded). An end that sits on the artificial box is re-solved in a box 1000 times larger
-  // and finally reported infinite.
-  Eigen::VectorXd xlo(p), xhi(p);
-  double big = 1e6 * (1 + fps.least_squares().cwiseAbs().maxCoeff());
-  if (!std::isfinite(big)) big = 1e6;
-  for (int attempt = 0;; ++attempt) {
-    for (int j = 0; j < p; ++j) {
-      xlo[j] = is_zero_face(s, j, true) ? 0.0 : -big;
-      xhi[j] = is_zero_face(s, j, false) ? 0.0 : big;
-    }
-    lp.set_box(xlo, xhi);
-    bool on_artificial_box = false;
-    for (int l = 0; l < p; ++l) {
-      for (double sign : {1.0, -1.0}) {
-        const auto a = lp.minimise(l, sign, warm, false);
-        out.lps += a.solves;
-        if (a.status == LpStatus::infeasible) {
-          out.status = certify_empty(lp.working_lp());
-          ++out.lps;
-          return out;
-        }
-        if (a.status != LpStatus::optimal) throw NumericalError("PUI: LP unbounded inside a finite box");
-        const bool lower = sign > 0;
-        double end = sign * a.value;
-        for (int j = 0; j < p; ++j)
-          if ((!is_zero_face(s, j, true) && a.theta[j] <= -big * (1 - 1e-9)) ||
-              (!is_zero_face(s, j, false) && a.theta[j] >= big * (1 - 1e-9)))
-            on_artificial_box = true;
-        if (attempt >= 2 && std::abs(a.theta[l]) >= big * (1 - 1e-9)) end = lower ? -inf : inf;
-        (lower ? out.float_lo : out.float_hi)[l] = end;
-        (lower ? out.lower_points : out.upper_points).col(l) = a.theta;
+  // Phase 1: floating-point PUIs; the 2p problems share one constraint matrix and warm-start.
+  std::vector<LpSolution> phase1(static_cast<std::size_t>(2 * p));
+  for (int l = 0; l < p; ++l) {
+    for (Sense sense : {Sense::minimize, Sense::maximize}) {
+      o.lp().set_objective_coordinate(l, sense);
+      const LpSolution& sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))] = o.solve(out.lps);
+      if (sol.status == LpStatus::infeasible) {
+        // Certify emptiness with exact rational arithmetic before calling the orthant empty.
+        // (A working set is a relaxation: if it is empty, so is the full set.)
+        const LpSolution exact = o.lp().solve_exact();
+        ++out.lps;
+        out.status = exact.status == LpStatus::infeasible ? OrthantStatus::empty : OrthantStatus::unknown;
+        return out;
       }
+      const bool lower = sense == Sense::minimize;
+      const double end = sol.status == LpStatus::unbounded ? (lower ? -inf : inf) : sol.objective;
+      (lower ? out.float_lo : out.float_hi)[l] = end;
+      (lower ? out.lower_points : out.upper_points).col(l) = sol.x;
     }
-    if (!on_artificial_box || attempt >= 2) break;
-    big *= 1e3;
   }
   out.status = OrthantStatus::feasible;
   out.box = make_box(out.float_lo.cwiseMin(out.float_hi), out.float_hi.cwiseMax(out.float_lo));
@@ -362,46 +320,65 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   // Neumaier–Shcherbina bound is finite. The orthant piece C is convex, so if every safe bound
   // over C ∩ X stays strictly inside the artificial faces of X, then C ⊂ X and the bounds hold
   // for C itself (a point of C outside X would put a point of C on an artificial face).
-  const Eigen::VectorXd width = out.float_hi - out.float_lo;
+  Eigen::VectorXd width = out.float_hi - out.float_lo;
   for (double factor : {1e-2, 1e-1, 1.0, 10.0}) {
+    Eigen::VectorXd xlo(p), xhi(p);
     for (int j = 0; j < p; ++j) {
       const double w = std::isfinite(width[j]) ? width[j] : 0.0;
-      if (!is_zero_face(s, j, true)) xlo[j] = out.float_lo[j] - (factor * w + 1e-8 * (1 + std::abs(out.float_lo[j])));
-      if (!is_zero_face(s, j, false)) xhi[j] = out.float_hi[j] + (factor * w + 1e-8 * (1 + std::abs(out.float_hi[j])));
+      const double mlo = factor * w + 1e-8 * (1 + std::abs(out.float_lo[j]));
+      const double mhi = factor * w + 1e-8 * (1 + std::abs(out.float_hi[j]));
+      xlo[j] = is_zero_face(s, j, true) ? 0.0 : out.float_lo[j] - mlo;
+      xhi[j] = is_zero_face(s, j, false) ? 0.0 : out.float_hi[j] + mhi;
+      o.lp().set_variable_bounds(j, xlo[j], xhi[j]);
     }
-    lp.set_box(xlo, xhi);
     bool ok = true;
     Eigen::VectorXd slo(p), shi(p);
     for (int l = 0; l < p && ok; ++l) {
-      for (double sign : {1.0, -1.0}) {
-        const bool lower = sign > 0;
+      for (Sense sense : {Sense::minimize, Sense::maximize}) {
         // An unbounded end stays infinite: nothing to certify.
-        if (std::isinf(lower ? out.float_lo[l] : out.float_hi[l])) {
-          (lower ? slo : shi)[l] = lower ? -inf : inf;
-          continue;
+        if (sense == Sense::minimize && std::isinf(out.float_lo[l])) { slo[l] = -inf; continue; }
+        if (sense == Sense::maximize && std::isinf(out.float_hi[l])) { shi[l] = inf; continue; }
+        // Over the working set only: a relaxation, so the safe bound holds for the full set,
+        // and phase 1 made the relaxation's optimum the full one.
+        o.lp().set_objective_coordinate(l, sense);
+        // Any multipliers give a valid bound: first try phase 1's duals (zero for rows added
+        // later) with the box X, which saves a re-solve whenever they certify the end.
+        LpSolution sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))];
+        if (sol.status == LpStatus::optimal) {
+          const Eigen::Index m_before = sol.row_dual.size();
+          sol.row_dual.conservativeResize(o.lp().num_rows());
+          sol.row_dual.tail(o.lp().num_rows() - m_before).setZero();
+          const double b = o.lp().safe_bound(sol);
+          const bool inside = sense == Sense::minimize ? (b > xlo[l] || is_zero_face(s, l, true))
+                                                       : (b < xhi[l] || is_zero_face(s, l, false));
+          if (!inside) sol.status = LpStatus::infeasible;  // fall back to a re-solve below
         }
-        const auto a = lp.minimise(l, sign, warm, true);
-        out.lps += a.solves;
-        if (a.status != LpStatus::optimal) {
+        if (sol.status != LpStatus::optimal) {
+          sol = o.lp().solve();
+          ++out.lps;
+        }
+        if (sol.status != LpStatus::optimal) {
           ok = false;
           break;
         }
-        const double bound = sign * a.safe;  // lower end: safe; upper end: -(safe bound of -theta_l)
-        if (lower) {
+        const double bound = o.lp().safe_bound(sol);
+        if (sense == Sense::minimize) {
           slo[l] = bound;
-          ok = ok && (bound > xlo[l] || is_zero_face(s, l, true));
+          if (!(bound > xlo[l] || is_zero_face(s, l, true))) ok = false;
         } else {
           shi[l] = bound;
-          ok = ok && (bound < xhi[l] || is_zero_face(s, l, false));
+          if (!(bound < xhi[l] || is_zero_face(s, l, false))) ok = false;
         }
-        (lower ? out.lower_points : out.upper_points).col(l) = a.theta;
+        (sense == Sense::minimize ? out.lower_points : out.upper_points).col(l) = sol.x;
       }
     }
     if (ok) {
       for (int j = 0; j < p; ++j) {
-        // Ends on a true orthant face are exact (0).
+        // Ends on a true orthant face are exact (0); infinite ends stay infinite.
         if (is_zero_face(s, j, true)) slo[j] = std::max(slo[j], 0.0);
         if (is_zero_face(s, j, false)) shi[j] = std::min(shi[j], 0.0);
+        if (std::isinf(out.float_lo[j])) slo[j] = -inf;
+        if (std::isinf(out.float_hi[j])) shi[j] = inf;
       }
       out.box = make_box(slo, shi.cwiseMax(slo));
       out.certified = true;
@@ -458,9 +435,9 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
   };
 
   if (!fps.has_interval_regressors()) {
-    absorb({}, solve_orthant(fps, {}, options.safe, options.warm_start));
+    absorb({}, solve_orthant(fps, {}, options));
   } else if (options.orthants == OrthantSelection::all) {
-    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options.safe, options.warm_start));
+    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options));
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
     // (theta_l = 0), the set may continue into the orthant across that face.
@@ -469,7 +446,7 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
     while (!queue.empty()) {
       Orthant s = queue.front();
       queue.pop_front();
-      const OrthantOutcome oc = solve_orthant(fps, s, options.safe, options.warm_start);
+      const OrthantOutcome oc = solve_orthant(fps, s, options);
       absorb(s, oc);
       if (oc.status != OrthantStatus::feasible) continue;
       double scale = 1;
@@ -489,7 +466,7 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
     // An empty starting orthant says nothing about the others: fall back to all of them.
     if (!any_feasible && p <= 16) {
       for (const Orthant& s : all_orthants(p))
-        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options.safe, options.warm_start));
+        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options));
     }
   }
 

@@ -225,19 +225,7 @@ LpSolution LinearProgram::solve() {
                          std::to_string(impl_->n()) + " columns");
   LpSolution s;
   s.sense = impl_->sense;
-  int status = glp_get_status(lp);
-  if (status != GLP_OPT && status != GLP_NOFEAS && status != GLP_UNBND && parm.meth != GLP_PRIMAL) {
-    // The dual simplex can stop without deciding primal feasibility (e.g. when the dual is
-    // infeasible too: an empty set with a recession direction). The primal simplex's phase 1
-    // decides it.
-    parm.meth = GLP_PRIMAL;
-    rc = glp_simplex(lp, &parm);
-    if (rc != 0)
-      throw NumericalError("LP solver failed (GLPK glp_simplex code " + std::to_string(rc) +
-                           ", primal retry) on a problem with " + std::to_string(impl_->m()) + " rows and " +
-                           std::to_string(impl_->n()) + " columns");
-    status = glp_get_status(lp);
-  }
+  const int status = glp_get_status(lp);
   const int prim = glp_get_prim_stat(lp);
   const int dual = glp_get_dual_stat(lp);
   if (status == GLP_OPT) {

@@ -290,3 +290,36 @@ TEST(LpvPui, DataThatNoThetaExplainsAreReportedWithTheirSamples) {
   EXPECT_TRUE(named);
   EXPECT_NE(r.pui.falsification.message().find("falsify"), std::string::npos);
 }
+
+TEST(LpvPui, WorkingSetLpsGiveTheSamePuisAsTheFullLps) {
+  // pui()'s constraint generation must not change the answer, only the time.
+  const auto m = LpvModelStructure::cerone_regruto_example();
+  Eigen::VectorXd theta(6);
+  theta << 0.5, -0.2, 0.3, 0.1, 1.0, 0.2;
+  for (double delta : {1e-3, 3e-2}) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(delta * 1e6));
+    std::uniform_real_distribution<double> U(-1, 1);
+    const int T = 1500;
+    Eigen::VectorXd u(T);
+    Eigen::MatrixXd lambda(T, 1);
+    for (int t = 0; t < T; ++t) {
+      u[t] = U(rng);
+      lambda(t, 0) = U(rng);
+    }
+    LpvMeasurements d;
+    d.u = u;
+    d.y = sets::simulate_lpv(m, theta, u, lambda) + delta * Eigen::VectorXd::NullaryExpr(T, [&] { return U(rng); });
+    d.r = lambda + delta * Eigen::MatrixXd::NullaryExpr(T, 1, [&] { return U(rng); });
+    d.delta_eta = Eigen::VectorXd::Constant(1, delta);
+    d.delta_eps = Eigen::MatrixXd::Constant(1, 1, delta);
+    const auto ws = sets::lpv_pui(m, d);
+    const auto full = sets::lpv_pui(m, d, {.working_set = false});
+    ASSERT_TRUE(ws.pui.guaranteed && full.pui.guaranteed);
+    ASSERT_TRUE(sets::contains(ws.pui.box, theta));
+    for (int l = 0; l < 6; ++l) {
+      const double w = full.pui.box[l].upper() - full.pui.box[l].lower();
+      EXPECT_NEAR(ws.pui.box[l].lower(), full.pui.box[l].lower(), 1e-7 * w) << l;
+      EXPECT_NEAR(ws.pui.box[l].upper(), full.pui.box[l].upper(), 1e-7 * w) << l;
+    }
+  }
+}

@@ -24,4 +24,11 @@ class UnsupportedError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
+/// A set that the data or the operation proved empty (e.g. an ellipsoid and a strip that do not
+/// meet: the data falsify the model). Not an input error: the caller decides what it means.
+class EmptySetError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace sets

@@ -70,6 +70,9 @@ struct PuiOptions {
   OrthantSelection orthants = OrthantSelection::remark2;
   bool safe = true;           // certify every end with a Neumaier–Shcherbina safe bound
   double zero_tolerance = 1e-9;  // relative: a bound this close to 0 extends to the next orthant
+  /// Constraint generation: start each orthant LP from a spread subset of the samples and add
+  /// the violated ones until none is (same PUIs, much faster for N >> p). Off: every sample.
+  bool working_set = true;
   bool warm_start = true;     // re-solve from the previous basis (false: cold start, for benchmarks)
 };
 

@@ -1,0 +1,95 @@
+// Cost of one Monte Carlo run of sets-ss-uncertainty (Farah et al., Section V), by stage.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "sets/level_set_uncertainty.hpp"
+#include "sets/propagator_identification.hpp"
+
+namespace {
+
+struct Data {
+  Eigen::MatrixXd u, y;
+  std::vector<sets::ObservabilityRow> rows;
+  Eigen::VectorXd truth;
+};
+
+const Data& data() {
+  static const Data d = [] {
+    sets::StateSpaceModel s;
+    s.A.resize(3, 3);
+    s.A << 0.2, 0, -1, 1, 0.3, 5, -2, -0.4, -0.6;
+    s.B.resize(3, 2);
+    s.B << 1, 0, 0, 2, 1, -1;
+    s.C.resize(2, 3);
+    s.C << 5, 0, 1, -3, 1, 1;
+    s.D = Eigen::MatrixXd::Zero(2, 2);
+    Data r;
+    std::mt19937_64 rng(1);
+    std::bernoulli_distribution coin(0.5);
+    std::normal_distribution<double> g;
+    r.u.resize(1000, 2);
+    for (int t = 0; t < 1000; ++t) r.u.row(t) << (coin(rng) ? 1.0 : -1.0), (coin(rng) ? 1.0 : -1.0);
+    r.y = sets::simulate(s, r.u);
+    for (int j = 0; j < 2; ++j) {
+      const double sd = std::sqrt((r.y.col(j).array() - r.y.col(j).mean()).square().mean() / 100.0);
+      for (int t = 0; t < 1000; ++t) r.y(t, j) += sd * g(rng);
+    }
+    r.rows = sets::select_rows(s.A, s.C, sets::RowSelection::output_major);
+    r.truth = sets::CanonicalStructure(r.rows, 2, 2, false).to_parameters(sets::canonical_form(s, r.rows));
+    return r;
+  }();
+  return d;
+}
+
+sets::PropagatorResult identify() {
+  sets::PropagatorOptions o;
+  o.order = 3;
+  o.past = 20;
+  o.rows = data().rows;
+  return sets::identify_propagator(data().u, data().y, o);
+}
+
+void BM_Identify(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(identify());
+}
+BENCHMARK(BM_Identify)->Unit(benchmark::kMillisecond);
+
+void BM_LevelSetAndPairs(benchmark::State& state) {
+  const auto id = identify();
+  for (auto _ : state) {
+    const auto dom = sets::level_set_domain(id.regression);
+    int out = sets::contains(dom.ellipsoid, data().truth) == sets::BoolInterval::no;
+    for (int i = 0; i < 12; ++i)
+      for (int j = i + 1; j < 12; ++j) {
+        const auto v = sets::pair_view(dom.ellipsoid, i, j);
+        const Eigen::Vector2d p(data().truth[i], data().truth[j]);
+        out += sets::contains(v.projection, p) == sets::BoolInterval::no;
+        out += v.slice && sets::contains(*v.slice, p) == sets::BoolInterval::no;
+      }
+    benchmark::DoNotOptimize(out);
+  }
+}
+BENCHMARK(BM_LevelSetAndPairs)->Unit(benchmark::kMillisecond);
+
+void BM_FpsContains(benchmark::State& state) {
+  const auto id = identify();
+  const auto dom = sets::level_set_domain(id.regression);
+  for (auto _ : state) {
+    const auto fps = sets::regression_fps(id.regression, dom.ell);
+    benchmark::DoNotOptimize(fps.contains(data().truth));
+  }
+}
+BENCHMARK(BM_FpsContains)->Unit(benchmark::kMillisecond);
+
+void BM_FpsPui(benchmark::State& state) {
+  const auto id = identify();
+  const auto dom = sets::level_set_domain(id.regression);
+  const auto fps = sets::regression_fps(id.regression, dom.ell);
+  for (auto _ : state) benchmark::DoNotOptimize(sets::pui(fps));
+}
+BENCHMARK(BM_FpsPui)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
