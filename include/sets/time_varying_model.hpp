@@ -1,0 +1,64 @@
+#pragma once
+// State-space models with affine time-varying parameter perturbations (Salehpour & Johansson,
+// equation 1) and their biaffine input/output approximation (equations 2-4).
+//
+//   x(k+1) = A x(k) + B u(k) + P (pi(k) (x) x(k)) + D pi(k) + Q (pi(k) (x) u(k))
+//   y(k)   = C x(k) + eta(k)
+//
+// pi(k) in R^q is the deviation of the parameters from their nominal values; (x) is the
+// Kronecker product, so pi (x) x = (I_q (x) x) pi stacks pi_1 x, ..., pi_q x.
+//
+// Signals are matrices with one row per sample: u is N x p (u(0..N-1)), pi is N x q
+// (pi(0..N-1)), y is (N+1) x l (y(0..N)).
+
+#include <Eigen/Core>
+
+namespace sets {
+
+/// The matrices of equation (1). P is n x nq, D is n x q, Q is n x qp.
+struct TimeVaryingModel {
+  Eigen::MatrixXd A, B, C, P, D, Q;
+
+  int states() const { return static_cast<int>(A.rows()); }
+  int inputs() const { return static_cast<int>(B.cols()); }
+  int outputs() const { return static_cast<int>(C.rows()); }
+  int parameters() const { return static_cast<int>(D.cols()); }
+
+  /// Throws InputError naming the matrix whose size disagrees with A (n), B (p), C (l) and D (q),
+  /// or that holds a non-finite entry.
+  void validate() const;
+};
+
+/// The trajectory of (1) without noise: x is (N+1) x n, y is (N+1) x l.
+struct TimeVaryingSimulation {
+  Eigen::MatrixXd x;
+  Eigen::MatrixXd y;
+};
+
+/// Simulates (1) exactly (bilinear in pi and x) from x(0) = x0 with the input u (N x p) and the
+/// perturbation pi (N x q). Throws InputError on mismatched dimensions.
+TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
+                               const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi);
+
+/// The stacked biaffine regression Y = Upsilon + Xi Pi + V of equation (4), where
+/// Xi = Omega + Psi + Phi (the D-, P- and Q-terms of equation 3) and Pi = [pi(0); ...; pi(N-1)].
+/// Stacking: row k*l + j is output j at sample k; column k*q + i is parameter i at sample k.
+struct BiaffineRegression {
+  Eigen::MatrixXd zeta;     // nominal state trajectory, (N+1) x n
+  Eigen::VectorXd upsilon;  // C zeta(k) stacked, (N+1) l
+  Eigen::MatrixXd xi;       // (N+1) l x N q, block lower triangular (first block row is zero)
+
+  int samples() const { return static_cast<int>(zeta.rows()) - 1; }  // N
+};
+
+/// Builds Upsilon and Xi of (3)-(4) for the nominal model, x(0) = x0 and the input u (N x p).
+/// Throws InputError on mismatched dimensions or an empty input.
+BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
+                                       const Eigen::MatrixXd& u);
+
+/// Stacks the rows of a signal matrix (one row per sample) into one column: [s(0); s(1); ...].
+Eigen::VectorXd stack_samples(const Eigen::MatrixXd& signal);
+/// The inverse of stack_samples: width entries per sample.
+Eigen::MatrixXd unstack_samples(const Eigen::VectorXd& stacked, int width);
+
+}  // namespace sets
