@@ -4,4 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-"${BUILD_DIR:-build}"/apps/sets-demo/sets-demo "$@"
+# The main job: discrepancy diagnosis of a built-in simulated plant (no files needed).
+"${BUILD_DIR:-build}"/apps/sets-diagnose/sets-diagnose --example "$@"

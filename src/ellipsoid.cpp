@@ -513,7 +513,6 @@ std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ve
     return detail::outer_ellipsoid(c, P);
   }
 
-  double q = 0;
   const double d2 = dl * dl;
   if (n == 1) {
     // 1-D: the intersection is an interval, which is itself the optimal ellipsoid.
@@ -524,29 +523,41 @@ std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ve
     P(0, 0) = r * r;
     return detail::outer_ellipsoid(c, P);
   }
-  if (options.criterion == EllipsoidCriterion::min_volume) {
-    // Fogel & Huang: s solves (n-1) s^2 - (g - d^2 - e^2) s - (n+1) e^2 d^2 = 0.
-    const double B = gm - d2 - em * em;
-    const double s = (B + std::sqrt(B * B + 4.0 * (n - 1.0) * (n + 1.0) * em * em * d2)) / (2.0 * (n - 1.0));
-    q = (s - d2) / gm;
-  } else {
-    const double trP = E.shape().trace();
-    const double pa2 = midpoint(detail::dot(Pa, Pa));
-    auto tr = [&](double qq) {
-      const double s = d2 + qq * gm;
-      return (1 + qq - qq * em * em / s) * (trP - qq * pa2 / s);
-    };
-    double best = 0, fbest = trP;
-    for (double lq = -12; lq <= 12; lq += 0.25) {
-      const double v = tr(std::pow(10.0, lq));
-      if (v < fbest) fbest = v, best = lq;
-    }
-    if (best != 0 || fbest < trP)
-      q = std::pow(10.0, golden_min([&](double lq) { return tr(std::pow(10.0, lq)); }, best - 0.25, best + 0.25));
+  // Fogel & Huang's minimum-volume weight: s = d^2 + q g solves
+  // (n-1) s^2 - (g - d^2 - e^2) s - (n+1) e^2 d^2 = 0.
+  const double B = gm - d2 - em * em;
+  const double s_vol = (B + std::sqrt(B * B + 4.0 * (n - 1.0) * (n + 1.0) * em * em * d2)) / (2.0 * (n - 1.0));
+  const double q_vol = (s_vol - d2) / gm;
+  // Minimum-trace weight: 1-D search (grid in log q, then golden section).
+  const double trP = E.shape().trace();
+  const double pa2 = midpoint(detail::dot(Pa, Pa));
+  auto tr = [&](double qq) {
+    const double s = d2 + qq * gm;
+    return (1 + qq - qq * em * em / s) * (trP - qq * pa2 / s);
+  };
+  double q_tr = 0, fbest = trP, best_lq = 0;
+  for (double lq = -10; lq <= 10; lq += 0.25) {
+    const double v = tr(std::pow(10.0, lq));
+    if (v < fbest) fbest = v, best_lq = lq, q_tr = 1;
   }
-  if (!(q > 0) || !std::isfinite(q)) return E;
-  auto [c, P] = family(Interval(q));
-  return detail::outer_ellipsoid(c, P);
+  if (q_tr > 0)
+    q_tr = std::pow(10.0, golden_min([&](double lq) { return tr(std::pow(10.0, lq)); }, best_lq - 0.25, best_lq + 0.25));
+  // Rounding enlarges each candidate differently (large q means cancellation), so compare the
+  // stored results, E itself included, by the requested measure.
+  std::vector<Ellipsoid> cand{E};
+  for (double q : {q_vol, q_tr})
+    if (q > 0 && std::isfinite(q)) {
+      auto [c, P] = family(Interval(q));
+      cand.push_back(detail::outer_ellipsoid(c, P));
+    }
+  auto measure = [&](const Ellipsoid& F) {
+    if (options.criterion == EllipsoidCriterion::min_trace) return std::pair{F.shape().trace(), 0.0};
+    return std::pair{volume(F), F.shape().trace()};  // flat: volumes tie at 0, trace decides
+  };
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < cand.size(); ++k)
+    if (measure(cand[k]) < measure(cand[best])) best = k;
+  return cand[best];
 }
 
 Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
@@ -570,7 +581,9 @@ Eigen::MatrixXd outer_polygon(const Ellipsoid& E, int n) {
   if (n < 3) throw InputError("outer_polygon: need at least 3 vertices");
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(E.shape());
   const Eigen::Vector2d l = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  const Eigen::Matrix2d L = es.eigenvectors() * l.asDiagonal();
+  Eigen::Matrix2d Q = es.eigenvectors();
+  if (Q.determinant() < 0) Q.col(1) *= -1;  // keep the vertices counter-clockwise
+  const Eigen::Matrix2d L = Q * l.asDiagonal();
   // A regular n-gon with inradius 1 (circumradius 1/cos(pi/n)) contains the unit disc; its
   // image under L contains E. The small factor absorbs rounding in L.
   const double R = (1.0 + 1e-9) / std::cos(std::numbers::pi / n);

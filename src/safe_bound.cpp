@@ -48,11 +48,12 @@ double safe_lower_bound(const Eigen::Ref<const Eigen::VectorXd>& c, const LpRows
   for (Eigen::Index i = 0; i < m; ++i) {
     const double yi = y[i];
     if (yi == 0 || std::isnan(yi)) continue;
-    for (const auto& [j, a] : rows.entries[static_cast<std::size_t>(i)])
-      r[static_cast<std::size_t>(j)] -= Interval(a) * Interval(yi);
     const auto k = static_cast<std::size_t>(i);
-    double term = inf_product(Interval(yi), rows.lo[k], rows.hi[k]);
-    if (term == -kInf) return -kInf;
+    const double term = inf_product(Interval(yi), rows.lo[k], rows.hi[k]);
+    // A multiplier of the wrong sign for a one-sided row (solver noise, e.g. -1e-18) would make
+    // the bound -inf. The bound holds for ANY y, so use y_i = 0 for that row instead.
+    if (term == -kInf) continue;
+    for (const auto& [j, a] : rows.entries[k]) r[static_cast<std::size_t>(j)] -= Interval(a) * Interval(yi);
     total += Interval(term);
   }
   for (Eigen::Index j = 0; j < c.size(); ++j) {

@@ -1,5 +1,6 @@
 #include "sets/zonotope.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -80,14 +82,48 @@ Zonotope Zonotope::from_box(const IntervalVector& box) {
 
 // ------------------------------------------------------------------------------- operations
 
+namespace {
+
+// Rigorous bound on |fl(A B) - A B| for a floating-point product in any summation order
+// (Higham, Accuracy and Stability, 3.5): gamma_k |A| |B| with gamma_k = k u / (1 - k u), plus an
+// absolute term for underflow. u = 2^-52 also covers directed rounding. |A||B| is itself
+// computed in floating point, so it is divided by (1 - gamma_k) once more.
+Eigen::MatrixXd product_error(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  const double k = static_cast<double>(A.cols());
+  const Interval ku = Interval(k) * Interval(std::ldexp(1.0, -52));
+  if (!(ku.upper() < 0.5)) throw NumericalError("linear_map: inner dimension too large for the error bound");
+  const Interval gamma = ku / (Interval(1.0) - ku);
+  const double factor = (gamma / ((Interval(1.0) - gamma) * (Interval(1.0) - gamma))).upper();
+  const double tiny = (Interval(k + 1) * Interval(std::numeric_limits<double>::denorm_min())).upper();
+  Eigen::MatrixXd E = A.cwiseAbs() * B.cwiseAbs();
+  for (Eigen::Index j = 0; j < E.cols(); ++j)
+    for (Eigen::Index i = 0; i < E.rows(); ++i) E(i, j) = (Interval(E(i, j)) * Interval(factor) + Interval(tiny)).upper();
+  return E;
+}
+
+}  // namespace
+
 Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z) {
   if (A.cols() != Z.dimension())
     throw InputError("linear_map: matrix has " + std::to_string(A.cols()) +
                      " columns but the zonotope has dimension " + std::to_string(Z.dimension()));
   if (!A.allFinite()) throw InputError("linear_map: matrix has a NaN or infinite entry");
-  const IntervalMatrix Ai = detail::im(A);
-  return detail::outer_zonotope(multiply(A, detail::iv(Z.center())),
-                                detail::multiply(Ai, detail::im(Z.generators())));
+  // Fast rigorous product: A G in floating point plus a per-row error bound, which joins the
+  // centre's rounding error as one axis-aligned generator per row.
+  const Eigen::MatrixXd AG = A * Z.generators();
+  const Eigen::MatrixXd err = product_error(A, Z.generators());
+  const IntervalVector c = multiply(A, detail::iv(Z.center()));
+  const auto n = A.rows();
+  IntervalMatrix box = IntervalMatrix::Constant(n, 1, Interval(0.0));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Interval s(0.0);
+    for (Eigen::Index j = 0; j < err.cols(); ++j) s += Interval(err(i, j));
+    box(i, 0) = Interval(-s.upper(), s.upper());
+  }
+  const Zonotope E = detail::outer_zonotope(c, box);  // centre rounding + product error, as a box
+  Eigen::MatrixXd G(n, AG.cols() + E.num_generators());
+  G << AG, E.generators();
+  return compact(Zonotope(E.center(), G));
 }
 
 Zonotope translate(const Zonotope& Z, const Eigen::VectorXd& b) {
@@ -99,9 +135,12 @@ Zonotope minkowski_sum(const Zonotope& Z1, const Zonotope& Z2) {
   if (Z1.dimension() != Z2.dimension())
     throw InputError("minkowski_sum: dimensions " + std::to_string(Z1.dimension()) + " and " +
                      std::to_string(Z2.dimension()) + " differ");
-  IntervalMatrix G(Z1.dimension(), Z1.num_generators() + Z2.num_generators());
-  G << detail::im(Z1.generators()), detail::im(Z2.generators());
-  return detail::outer_zonotope(detail::iv(Z1.center()) + detail::iv(Z2.center()), G);
+  // Generators are copied exactly; only the centre sum rounds (covered by a box generator).
+  const Zonotope C = detail::outer_zonotope(detail::iv(Z1.center()) + detail::iv(Z2.center()),
+                                            IntervalMatrix(Z1.dimension(), 0));
+  Eigen::MatrixXd G(Z1.dimension(), Z1.num_generators() + Z2.num_generators() + C.num_generators());
+  G << Z1.generators(), Z2.generators(), C.generators();
+  return Zonotope(C.center(), G);
 }
 
 IntervalVector outer_box(const Zonotope& Z) {
@@ -226,16 +265,17 @@ Eigen::MatrixXd boxed_generators(const Eigen::MatrixXd& R) {
 }
 
 // Sum over the columns of R of |(X R)_ij| + dev ||R_j||: an upper bound on the row sums of
-// |T^{-1} R| when ||T^{-1} - X||_2 <= dev.
+// |T^{-1} R| when ||T^{-1} - X||_2 <= dev. X R in floating point plus Higham's product bound.
 Eigen::VectorXd frame_half_widths(const Eigen::MatrixXd& X, double dev, const Eigen::MatrixXd& R) {
-  const IntervalMatrix XR = detail::multiply(detail::im(X), detail::im(R));
+  const Eigen::MatrixXd XR = X * R;
+  const Eigen::MatrixXd err = product_error(X, R);
+  Eigen::VectorXd col(R.cols());
+  for (Eigen::Index j = 0; j < R.cols(); ++j)
+    col[j] = (Interval(dev) * Interval(detail::norm_upper(detail::iv(R.col(j))))).upper();
   Eigen::VectorXd s(R.rows());
   for (Eigen::Index i = 0; i < R.rows(); ++i) {
     Interval acc(0.0);
-    for (Eigen::Index j = 0; j < R.cols(); ++j) {
-      const double mag = std::max(std::abs(XR(i, j).lower()), std::abs(XR(i, j).upper()));
-      acc += Interval(mag) + Interval(dev) * Interval(detail::norm_upper(detail::iv(R.col(j))));
-    }
+    for (Eigen::Index j = 0; j < R.cols(); ++j) acc += Interval(std::abs(XR(i, j))) + Interval(err(i, j)) + Interval(col[j]);
     s[i] = acc.upper();
   }
   return s;
@@ -246,8 +286,9 @@ Eigen::VectorXd frame_half_widths(const Eigen::MatrixXd& X, double dev, const Ei
 // a second verified pass checks that R's part fits in F's unit box, so no rounding generators
 // are needed. Falls back to the axis-aligned box if verification fails.
 Eigen::MatrixXd pca_generators(const Eigen::MatrixXd& R) {
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(R, Eigen::ComputeFullU);
-  const Eigen::MatrixXd T = svd.matrixU();
+  // Principal axes of the discarded generators: eigenvectors of R R^T (n x n, cheap).
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(R * R.transpose());
+  const Eigen::MatrixXd T = es.eigenvectors();
   const auto dev = detail::inverse_deviation_bound(T, T.transpose());
   if (!dev) return boxed_generators(R);
   const Eigen::VectorXd s = frame_half_widths(T.transpose(), *dev, R) * (1 + 1e-9);

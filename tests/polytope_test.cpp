@@ -3,6 +3,8 @@
 // near-parallel constraints, above 3-D).
 
 #include <gtest/gtest.h>
+
+#include <Eigen/LU>
 #include <rapidcheck/gtest.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -235,7 +237,18 @@ RC_GTEST_PROP(Polytope, LinearMapContainsTheImage, ()) {
 RC_GTEST_PROP(Polytope, ZonotopeFacetsAgreeWithExactHull3D, ()) {
   Rng r(*rc::gen::arbitrary<std::uint64_t>());
   const int m = *rc::gen::inRange(3, 7);
-  const sets::Zonotope Z(Eigen::Vector3d(r.u(), r.u(), r.u()), r.mat(3, m));
+  // Dyadic entries (k/1024, |k| <= 1024) so that the 2^m vertex sums are exact doubles: with
+  // arbitrary doubles the rounded sums can split a facet of the exact hull in two.
+  auto dyadic = [&r] { return std::round(r.u() * 1024) / 1024; };
+  const Eigen::MatrixXd G = Eigen::MatrixXd::NullaryExpr(3, m, dyadic);
+  for (int a = 0; a < m; ++a)  // generic position: no three generators linearly dependent
+    for (int b = a + 1; b < m; ++b)
+      for (int c = b + 1; c < m; ++c) {
+        Eigen::Matrix3d M;
+        M << G.col(a), G.col(b), G.col(c);
+        RC_PRE(std::abs(M.determinant()) > 1e-6);
+      }
+  const sets::Zonotope Z(Eigen::Vector3d(dyadic(), dyadic(), dyadic()), G);
   const HPolytope H = sets::to_hpolytope(Z);
   const VPolytope V = sets::to_vpolytope(Z);        // 2^m sums through CGAL's exact hull
   const HPolytope Hc = sets::to_hpolytope(V);       // facets of the exact hull

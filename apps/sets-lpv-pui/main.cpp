@@ -445,10 +445,13 @@ int run_data(const std::string& path, const std::string& ucol, const std::string
             << " regressions, " << names.size() << " parameters, |eta| <= " << delta_eta << ", |eps| <= " << delta_eps
             << '\n';
   if (res.pui.empty) {
-    std::cerr << "sets-lpv-pui: " << res.pui.falsification.message() << '\n';
-    std::cerr << "  as sample indices (0-based) and file lines:";
-    for (int t : res.falsifying_times) std::cerr << ' ' << t << " (line " << t + 2 << ")";
-    std::cerr << '\n';
+    std::cerr << "sets-lpv-pui: the data falsify the model: no parameter value satisfies all samples with these "
+                 "bounds.\n  Conflicting samples (0-based index, file line: violation of the best compromise, in units "
+                 "of y):";
+    for (std::size_t i = 0; i < res.falsifying_times.size(); ++i)
+      std::cerr << "\n    sample " << res.falsifying_times[i] << " (line " << res.falsifying_times[i] + 2
+                << "): " << res.pui.falsification.violation[i];
+    std::cerr << "\n  Check these samples, or widen --delta-eta / --delta-eps, or change the model structure.\n";
     return 2;
   }
   std::cout << std::setprecision(6);

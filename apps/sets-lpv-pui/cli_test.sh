@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Command-line checks of sets-lpv-pui: exit codes and messages for good data, bad input and
+# falsified data. Usage: cli_test.sh /path/to/sets-lpv-pui
+set -u
+app="$1"
+dir="$(mktemp -d)"
+trap 'rm -rf "$dir"' EXIT
+fail=0
+check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
+  local name="$1" want="$2" pattern="$3"
+  shift 4
+  "$@" >"$dir/out" 2>&1
+  local got=$?
+  if [[ $got -ne $want ]] || ! grep -qE "$pattern" "$dir/out"; then
+    echo "FAIL $name: exit $got (want $want), pattern '$pattern'"
+    sed 's/^/    /' "$dir/out" | head -20
+    fail=1
+  else
+    echo "ok   $name"
+  fi
+}
+
+# Section IV's system, 200 samples, |eta|, |eps| <= 1e-3 (awk: no Python needed).
+awk 'BEGIN {
+  srand(3); T = 200; d = 1e-3; print "t,u,y,r";
+  w1 = 0; w2 = 0; u1 = 0; u2 = 0;
+  for (t = 1; t <= T; ++t) {
+    u = 2 * rand() - 1; l = 2 * rand() - 1;
+    w = -(0.5 * l) * w1 - (-0.2 + 0.3 * l * l) * w2 + 0.1 * u1 + (1.0 * l + 0.2 * l * l) * u2;
+    printf "%d,%.17g,%.17g,%.17g\n", t, u, w + d * (2 * rand() - 1), l + d * (2 * rand() - 1);
+    w2 = w1; w1 = w; u2 = u1; u1 = u;
+  }
+}' >"$dir/good.csv"
+data=(--data "$dir/good.csv" --u u --y y --r r --delta-eta 1e-3 --delta-eps 1e-3)
+
+check "good data" 0 "certified by a safe bound: yes" -- "$app" "${data[@]}"
+check "good data, structure by flags" 0 "a2,2\[lambda\^2\]" -- \
+  "$app" "${data[@]}" --a lambda --a 1,lambda^2 --b "" --b 1 --b lambda,lambda^2
+echo '{"alpha": 1, "a": [["lambda"], ["1", "lambda^2"]], "b": [[], ["1"], ["lambda", "lambda^2"]]}' >"$dir/model.json"
+check "good data, structure by JSON" 0 "b2,1\[lambda\]" -- "$app" "${data[@]}" --model "$dir/model.json" --json "$dir/out.json"
+grep -q '"guaranteed": true' "$dir/out.json" || { echo "FAIL json output"; fail=1; }
+
+sed '51s/^\([0-9]*\),\([^,]*\),[^,]*,/\1,\2,nan,/' "$dir/good.csv" >"$dir/nan.csv"
+check "NaN sample" 1 "nan.csv:51, column 3 \('y'\).*not a finite number" -- \
+  "$app" --data "$dir/nan.csv" --u u --y y --r r --delta-eta 1e-3 --delta-eps 1e-3
+check "negative bound" 1 "delta-eta.*>= 0" -- "$app" --data "$dir/good.csv" --u u --y y --r r --delta-eta -1 --delta-eps 1e-3
+head -6 "$dir/good.csv" >"$dir/short.csv"
+check "more parameters than samples" 1 "3 regressions .* for 6 parameters" -- \
+  "$app" --data "$dir/short.csv" --u u --y y --r r --delta-eta 1e-3 --delta-eps 1e-3
+awk -F, 'NR == 101 { $3 = $3 + 5 } { print }' OFS=, "$dir/good.csv" >"$dir/falsified.csv"
+check "falsified data" 2 "sample 10[0-2] \(line 10[2-4]\)" -- \
+  "$app" --data "$dir/falsified.csv" --u u --y y --r r --delta-eta 1e-3 --delta-eps 1e-3
+check "unknown column" 1 "no column 'x'" -- "$app" --data "$dir/good.csv" --u x --y y --r r --delta-eta 1e-3 --delta-eps 1e-3
+check "bad basis" 1 "gamma" -- "$app" "${data[@]}" --a "gamma(lambda)" --b 1
+check "bad table" 1 "" -- "$app" --table V
+check "table I, one run, JSON" 0 "true theta in all PUIs: 1/1" -- "$app" --table I --runs 1 --threads 2 --json "$dir/t.json"
+grep -q '"coverage": 1.0' "$dir/t.json" || { echo "FAIL table json"; fail=1; }
+exit $fail

@@ -1,0 +1,70 @@
+#pragma once
+// Orthonormal basis functions F_k(z) for linearly parametrised models G(z) = sum_k g(k) F_k(z):
+// FIR (F_k = z^-(k+1)), Laguerre (one real pole a) and Kautz (one complex pole pair xi, conj xi).
+//
+// All three share one structure used by the error bounds in hinf_bound.hpp: with block size m
+// (1 for FIR/Laguerre, 2 for Kautz), F_k = front_{k mod m}(z) * A(z)^{floor(k/m)}, where A is an
+// inner (all-pass) function. Every F_k has unit l2 norm (orthonormal in H2), |A(e^{iw})| = 1, and
+// the bounds below are closed-form and rigorous (docs/methods/hinf-bound.md, "Basis bounds").
+
+#include <Eigen/Core>
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace sets {
+
+enum class BasisKind { fir, laguerre, kautz };
+
+/// A rational transfer function in z^-1: (b0 + b1 z^-1 + ...) / (1 + a1 z^-1 + ...).
+struct DiscreteTf {
+  Eigen::VectorXd b, a;                  // a(0) == 1
+  std::vector<double> pole_moduli;       // |p_i| of the roots of a (for the bounds)
+  std::complex<double> operator()(double w) const;
+  /// y = (b/a) x with zero initial state.
+  Eigen::VectorXd filter(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// sup_w |b/a| <= sum|b_k| / prod(1 - |p_i|)  (rigorous).
+  double hinf_bound() const;
+  /// sup_w |d/dw (b/a)| <= sum k|b_k|/amin + sum|b_k| sum k|a_k| / amin^2, amin = prod(1-|p_i|).
+  double derivative_bound() const;
+};
+
+class OrthonormalBasis {
+ public:
+  static OrthonormalBasis fir();
+  /// Throws InputError unless -1 < a < 1.
+  static OrthonormalBasis laguerre(double a);
+  /// Throws InputError unless |xi| < 1 and Im xi != 0.
+  static OrthonormalBasis kautz(std::complex<double> xi);
+
+  BasisKind kind() const { return kind_; }
+  int block() const { return static_cast<int>(fronts_.size()); }
+  std::string describe() const;
+
+  /// Zero-state responses x_k = F_k(q) u, k = 0..count-1, as the columns of an N x count matrix.
+  Eigen::MatrixXd responses(const Eigen::Ref<const Eigen::VectorXd>& u, int count) const;
+  /// F_k(e^{iw}) for k = 0..count-1.
+  Eigen::VectorXcd frequency_responses(double w, int count) const;
+  /// Impulse responses f_k(s), s = 0..length-1 (column k).
+  Eigen::MatrixXd impulse_responses(int length, int count) const;
+
+  /// H0 >= sup_w |F_k(e^{iw})| for every k.
+  double hinf_bound() const;
+  /// D0 >= sup_w |d front_i/dw| over the fronts.
+  double front_derivative_bound() const;
+  /// L' >= sup_w |dA/dw| (group delay of the inner factor: sum_i (1+|p_i|)/(1-|p_i|)).
+  double allpass_derivative_bound() const;
+  /// beta1 = sum_k M rho^k sup|dF_k/dw|, eq. (12), in closed form (see the method doc).
+  double beta1(double M, double rho) const;
+
+ private:
+  BasisKind kind_ = BasisKind::fir;
+  std::complex<double> pole_ = 0;
+  std::vector<DiscreteTf> fronts_;
+  DiscreteTf allpass_;
+};
+
+const char* to_string(BasisKind k);
+
+}  // namespace sets
