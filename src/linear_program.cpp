@@ -204,9 +204,13 @@ LpSolution LinearProgram::solve() {
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
   parm.meth = GLP_DUALP;  // dual simplex suits re-solves after objective or bound changes
+  // GLPK can cycle on degenerate, badly scaled problems (seen in the safe-bound property test):
+  // a healthy solve needs a few times (rows + columns) iterations, so cap it far above that.
+  parm.it_lim = 10000 + 50 * (impl_->m() + impl_->n());
   int rc = glp_simplex(lp, &parm);
-  if (rc == GLP_EBADB || rc == GLP_ESING || rc == GLP_ECOND || rc == GLP_EFAIL) {
-    // Recover once from a bad or ill-conditioned basis: scale, rebuild the basis, primal simplex.
+  if (rc == GLP_EBADB || rc == GLP_ESING || rc == GLP_ECOND || rc == GLP_EFAIL || rc == GLP_EITLIM) {
+    // Recover once from a bad or ill-conditioned basis or from cycling: scale, rebuild the
+    // basis, primal simplex.
     glp_scale_prob(lp, GLP_SF_AUTO);
     glp_adv_basis(lp, 0);
     parm.meth = GLP_PRIMAL;
@@ -258,6 +262,7 @@ LpSolution LinearProgram::solve_exact() {
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
+  parm.it_lim = 10000 + 50 * (impl_->m() + impl_->n());  // as in solve(): never cycle forever
   const int rc = glp_exact(lp, &parm);
   if (rc != 0)
     throw NumericalError("exact LP solver failed (GLPK glp_exact code " + std::to_string(rc) + ")");

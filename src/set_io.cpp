@@ -1,3 +1,4 @@
+#include "sets/atomic_file.hpp"
 #include "sets/set_io.hpp"
 
 #include <cmath>
@@ -133,20 +134,7 @@ AnySet from_json(const json& j, const std::string& where) {
 }
 
 void save_json(const std::string& path, const AnySet& set) {
-  const std::filesystem::path target(path);
-  std::filesystem::path tmp = target;
-  tmp += ".tmp";
-  {
-    std::ofstream os(tmp);
-    if (!os) throw InputError(path + ": cannot open for writing");
-    os << to_json(set).dump(2) << "\n";
-    os.close();
-    if (!os) {
-      std::filesystem::remove(tmp);
-      throw InputError(path + ": write failed");
-    }
-  }
-  std::filesystem::rename(tmp, target);
+  write_file_atomically(path, to_json(set).dump(2) + "\n");
 }
 
 AnySet load_json(const std::string& path) {

@@ -24,6 +24,7 @@
 #include <sstream>
 #include <thread>
 
+#include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/lpv_model.hpp"
 
@@ -150,25 +151,6 @@ Stats stats(const std::vector<double>& v) {
   return s;
 }
 
-// Writes `text` to `path` completely or not at all (temporary file in the same folder, rename).
-void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::filesystem::path target(path);
-  std::filesystem::path tmp = target;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw sets::InputError("cannot write '" + tmp.string() + "'");
-    out << text;
-    out.flush();
-    if (!out) throw sets::InputError("writing '" + tmp.string() + "' failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, target, ec);
-  if (ec) {
-    std::filesystem::remove(tmp);
-    throw sets::InputError("cannot write '" + path + "': " + ec.message());
-  }
-}
 
 std::string sci(double x, int digits = 1) {
   std::ostringstream os;
@@ -310,7 +292,7 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
   std::cout << "\n" << (all_covered ? "coverage: the true theta was inside every PUI in every run (100%)"
                                     : "WARNING: the true theta was outside a PUI in some run")
             << "; wall time " << fix(wall, 1) << " s on " << std::max(1u, threads) << " thread(s)\n";
-  if (!json_path.empty()) write_file_atomically(json_path, out.dump(2) + "\n");
+  if (!json_path.empty()) sets::write_file_atomically(json_path, out.dump(2) + "\n");
   return 0;
 }
 
@@ -478,7 +460,7 @@ int run_data(const std::string& path, const std::string& ucol, const std::string
             << res.pui.lp_solves << ", time " << std::setprecision(3) << ms << " ms\n";
   js["guaranteed"] = res.pui.guaranteed;
   js["seconds"] = ms / 1e3;
-  if (!json_path.empty()) write_file_atomically(json_path, js.dump(2) + "\n");
+  if (!json_path.empty()) sets::write_file_atomically(json_path, js.dump(2) + "\n");
   return 0;
 }
 

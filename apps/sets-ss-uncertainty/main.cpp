@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "csv_columns.hpp"
+#include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/level_set_uncertainty.hpp"
 #include "sets/propagator_identification.hpp"
@@ -85,18 +86,8 @@ sets::RowSelection parse_selection(const std::string& s) {
   return s == "lag-major" ? sets::RowSelection::lag_major : sets::RowSelection::output_major;
 }
 
-// Writes the JSON completely or not at all (temporary name in the same folder, then rename).
-void write_json(const std::string& path, const json& j) {
-  const std::filesystem::path target(path);
-  const auto tmp = target.parent_path() / (target.filename().string() + ".tmp");
-  {
-    std::ofstream out(tmp);
-    if (!out) throw sets::InputError("--json " + path + ": cannot write the file");
-    out << std::setw(2) << j << '\n';
-    if (!out) throw sets::InputError("--json " + path + ": write failed");
-  }
-  std::filesystem::rename(tmp, target);
-}
+// Writes the JSON completely or not at all.
+void write_json(const std::string& path, const json& j) { sets::write_file_atomically(path, j.dump(2) + "\n"); }
 
 // ------------------------------------------------------------------ Monte Carlo (Section V)
 

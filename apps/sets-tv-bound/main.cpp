@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "crane.hpp"
+#include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/tv_bound.hpp"
 
@@ -261,16 +262,7 @@ int main(int argc, char** argv) {
       out["cases"].push_back(j);
       std::cout.flush();
     }
-    if (!json_path.empty()) {
-      const std::string tmp = json_path + ".tmp";
-      {
-        std::ofstream f(tmp);
-        if (!f) throw sets::InputError("cannot write " + tmp);
-        f << out.dump(2) << '\n';
-        if (!f) throw sets::InputError("cannot write " + tmp);
-      }
-      std::filesystem::rename(tmp, json_path);
-    }
+    if (!json_path.empty()) sets::write_file_atomically(json_path, out.dump(2) + "\n");
   } catch (const sets::InputError& e) {
     std::cerr << "sets-tv-bound: " << e.what() << '\n';
     return 1;

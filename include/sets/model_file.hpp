@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "sets/atomic_file.hpp"
+
 namespace sets {
 
 struct ModelParameter {
@@ -55,7 +57,5 @@ std::string to_json_text(const ModelFile& model);
 /// Writes completely or not at all (temporary name, then rename).
 void save_model_file(const ModelFile& model, const std::string& path);
 
-/// Writes `text` to `path` through a temporary file in the same folder and a rename.
-void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace sets
