@@ -16,14 +16,7 @@ struct Data {
 
 const Data& data() {
   static const Data d = [] {
-    sets::StateSpaceModel s;
-    s.A.resize(3, 3);
-    s.A << 0.2, 0, -1, 1, 0.3, 5, -2, -0.4, -0.6;
-    s.B.resize(3, 2);
-    s.B << 1, 0, 0, 2, 1, -1;
-    s.C.resize(2, 3);
-    s.C << 5, 0, 1, -3, 1, 1;
-    s.D = Eigen::MatrixXd::Zero(2, 2);
+    const sets::StateSpaceModel s = sets::farah_example_system();
     Data r;
     std::mt19937_64 rng(1);
     std::bernoulli_distribution coin(0.5);

@@ -1,4 +1,3 @@
-#include "sets/atomic_file.hpp"
 #include "sets/set_io.hpp"
 
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 
 namespace sets {

@@ -47,19 +47,6 @@ struct Settings {
   int order = 0;
 };
 
-// Section V: the printed A, B, C; D = 0.
-sets::StateSpaceModel farah_system() {
-  sets::StateSpaceModel s;
-  s.A.resize(3, 3);
-  s.A << 0.2, 0, -1, 1, 0.3, 5, -2, -0.4, -0.6;
-  s.B.resize(3, 2);
-  s.B << 1, 0, 0, 2, 1, -1;
-  s.C.resize(2, 3);
-  s.C << 5, 0, 1, -3, 1, 1;
-  s.D = Eigen::MatrixXd::Zero(2, 2);
-  return s;
-}
-
 std::vector<sets::ObservabilityRow> parse_rows(const std::string& spec, int ny) {
   std::vector<sets::ObservabilityRow> rows;
   std::stringstream ss(spec);
@@ -153,7 +140,7 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
 }
 
 int monte_carlo(const Settings& st) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto rows = st.rows.empty() ? sets::select_rows(sys.A, sys.C, parse_selection(st.selection))
                                     : parse_rows(st.rows, 2);
   const sets::CanonicalStructure structure(rows, 2, 2, st.estimate_d);

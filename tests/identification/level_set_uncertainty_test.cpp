@@ -15,18 +15,6 @@ namespace {
 
 using sets::StateSpaceModel;
 
-StateSpaceModel farah_system() {
-  StateSpaceModel s;
-  s.A.resize(3, 3);
-  s.A << 0.2, 0, -1, 1, 0.3, 5, -2, -0.4, -0.6;
-  s.B.resize(3, 2);
-  s.B << 1, 0, 0, 2, 1, -1;
-  s.C.resize(2, 3);
-  s.C << 5, 0, 1, -3, 1, 1;
-  s.D = Eigen::MatrixXd::Zero(2, 2);
-  return s;
-}
-
 // A hand-made regression: 1 state equation (parameter 0) and 1 output equation (parameter 1)
 // over three samples.
 sets::CanonicalRegression tiny_regression() {
@@ -87,7 +75,7 @@ TEST(LevelSetUncertainty, FpsLeavesOutRowsWithoutParametersAndReportsThem) {
 // regression (built on the exact canonical states) contains the true parameters; and the true
 // parameters inside the ellipsoid lie inside each of its pair projections.
 RC_GTEST_PROP(LevelSetUncertainty, BoundedNoiseFpsContainsTruth, ()) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   const sets::CanonicalStructure st(rows, 2, 2, false);
   const auto canon = sets::canonical_form(sys, rows);

@@ -9,19 +9,6 @@ namespace {
 
 using sets::StateSpaceModel;
 
-// Section V of Farah et al.: the printed A, B, C with D = 0.
-StateSpaceModel farah_system() {
-  StateSpaceModel s;
-  s.A.resize(3, 3);
-  s.A << 0.2, 0, -1, 1, 0.3, 5, -2, -0.4, -0.6;
-  s.B.resize(3, 2);
-  s.B << 1, 0, 0, 2, 1, -1;
-  s.C.resize(2, 3);
-  s.C << 5, 0, 1, -3, 1, 1;
-  s.D = Eigen::MatrixXd::Zero(2, 2);
-  return s;
-}
-
 Eigen::MatrixXd binary_input(int N, int nu, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution coin(0.5);
@@ -32,7 +19,7 @@ Eigen::MatrixXd binary_input(int N, int nu, unsigned seed) {
 }
 
 TEST(PropagatorIdentification, CanonicalFormOfThePrintedSystem) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   ASSERT_EQ(rows.size(), 3u);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(rows[k], (sets::ObservabilityRow{k, 0}));
@@ -57,7 +44,7 @@ TEST(PropagatorIdentification, CanonicalFormOfThePrintedSystem) {
 }
 
 TEST(PropagatorIdentification, NoiseFreeDataReproduceTheCanonicalParameters) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto u = binary_input(1000, 2, 7);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -79,7 +66,7 @@ TEST(PropagatorIdentification, NoiseFreeDataReproduceTheCanonicalParameters) {
 }
 
 TEST(PropagatorIdentification, EstimatedDIsNearZeroForNoiseFreeData) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto u = binary_input(800, 2, 3);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -92,7 +79,7 @@ TEST(PropagatorIdentification, EstimatedDIsNearZeroForNoiseFreeData) {
 }
 
 TEST(PropagatorIdentification, UserRowsGiveAnotherCanonicalForm) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto u = binary_input(1000, 2, 11);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -106,7 +93,7 @@ TEST(PropagatorIdentification, UserRowsGiveAnotherCanonicalForm) {
 }
 
 TEST(PropagatorIdentification, BadInputIsRejected) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto u = binary_input(600, 2, 5);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -155,7 +142,7 @@ namespace {
 // its standard deviation of the true canonical value (40 runs keep the test fast; the app runs
 // 1000 and shows |bias|/std of at most about 0.12).
 TEST(PropagatorIdentification, MonteCarloMeansAgreeWithTheTrueValues) {
-  const auto sys = farah_system();
+  const auto sys = sets::farah_example_system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   const auto truth = sets::CanonicalStructure(rows, 2, 2, false).to_parameters(sets::canonical_form(sys, rows));
   const int R = 40;
