@@ -205,7 +205,7 @@ CraneNoiseCase random_crane_case() {
 // costs 0, so (8) with eps fixed has optimum 0 and every pi-hat_i(k) is 0 up to the LP tolerance.
 RC_GTEST_PROP(TvBound, KnownNoiseBoundAndZeroPerturbationGiveZeroBound, ()) {
   const CraneNoiseCase c = random_crane_case();
-  const double eps = *rc::gen::inRange(1, 31) / 100.0;                      // Table III: 0.05-0.3
+  const double eps = *rc::gen::inRange(1, 31) / 100.0;  // 0.01-0.3 (Table III: 0.05-0.3)
   const double inside = *rc::gen::element(1.0, 0.999, 0.5, 0.1, 0.0);     // ||eta||_w / eps
   const auto data = c.data(inside * eps);
   sets::LinfBoundOptions o;
@@ -227,7 +227,8 @@ RC_GTEST_PROP(TvBound, KnownNoiseBoundAndZeroPerturbationGiveZeroBound, ()) {
 //   (b) f(Pi-hat(s eta)) / s is non-increasing in s (never falls faster than the noise);
 //   (c) eps-hat(s eta) / (s ||eta||_w) is non-decreasing in s;
 //   (d) f(Pi-hat(s eta)) <= s C*, C* = min f over the best fits argmin g: the bound -> 0 linearly;
-//   (e) once Pi = 0 is optimal (objective 1) it stays optimal for every larger noise.
+//   (e) the optimal value min (s f + g) is non-decreasing in s (so once Pi = 0 is optimal,
+//       objective 1, it stays optimal for every larger noise).
 // With delta-optimal LP solutions (delta = kLpTol) (b) and (c) hold up to 2 delta / (s2 - s1) and
 // (d) up to delta (C* is computed at eps* (1 + 1e-9), which adds <= 1e-9).
 // Seeded random crane cases, s = 1, 0.1, 0.01, 0.001 (a plain loop: 6 LPs per case).
@@ -269,15 +270,13 @@ TEST(TvBound, PaperWeightBoundFollowsTheScalingLaw) {
       const double f = perturbation_cost(r.pi, o.F, o.G), share = r.epsilon[0] / (0.3 * s);
       trace += " s=" + std::to_string(s) + ": f=" + std::to_string(f) + " eps/|e|=" + std::to_string(share) + ";";
       EXPECT_LE(f, 1 + kLpTol) << trace;                                           // (a)
-      EXPECT_LE(f, s * c_star + kLpTol) << "C* = " << c_star << trace;       // (d)
+      EXPECT_LE(f, s * c_star + kLpTol) << "C* = " << c_star << trace;             // (d)
       EXPECT_NEAR(r.objective, f + share, kLpTol) << trace;
       if (prev_s > 0) {
         const double slack = 2 * kLpTol / (prev_s - s);
         EXPECT_GE(f / s, prev_ratio - slack) << trace;                              // (b)
         EXPECT_LE(share, prev_share + kLpTol + slack) << trace;                     // (c)
-        if (r.objective >= 1 - kLpTol) {
-          EXPECT_GE(prev_objective, 1 - kLpTol) << trace;                           // (e)
-        }
+        EXPECT_LE(r.objective, prev_objective + 2 * kLpTol) << trace;               // (e)
       }
       prev_s = s, prev_ratio = f / s, prev_share = share, prev_objective = r.objective;
     }
