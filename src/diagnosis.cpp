@@ -124,9 +124,15 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
   Eigen::Index shortest = N;
   for (int s = 0; s < S; ++s) shortest = std::min(shortest, a[static_cast<std::size_t>(s + 1)] - a[static_cast<std::size_t>(s)]);
   const Eigen::Index m = std::min<Eigen::Index>(shortest, 25);
-  auto sub = [&](int s, Eigen::Index j) {  // the j-th residual sample used inside segment s
+  // Feature j of segment s: the mean over the j-th of m equal parts of the segment (averaging
+  // keeps isolated spikes and noise from setting the l-inf fit).
+  auto part = [&](int s, Eigen::Index j) {
     const Eigen::Index lo = a[static_cast<std::size_t>(s)], len = a[static_cast<std::size_t>(s + 1)] - lo;
-    return lo + (len * (2 * j + 1)) / (2 * m);
+    return std::pair<Eigen::Index, Eigen::Index>(lo + len * j / m, lo + len * (j + 1) / m);
+  };
+  auto mean_over = [&](const Eigen::MatrixXd& x, Eigen::Index o, int s, Eigen::Index j) {
+    const auto [b0, b1] = part(s, j);
+    return x.col(o).segment(b0, b1 - b0).mean();
   };
   const Eigen::Index l = ny * m;  // "outputs" of the regression: (output, sub-sample) pairs
   Eigen::VectorXd sigma(ny);
@@ -137,7 +143,7 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
   Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(S + 1, l);
   for (int s = 0; s < S; ++s)
     for (Eigen::Index o = 0; o < ny; ++o)
-      for (Eigen::Index j = 0; j < m; ++j) Y(s + 1, o * m + j) = R(sub(s, j), o) / sigma[o];
+      for (Eigen::Index j = 0; j < m; ++j) Y(s + 1, o * m + j) = mean_over(R, o, s, j) / sigma[o];
 
   // Sensitivities: column (i, s) holds d(features)/d(pi_i over segment s), pi in units of scale_i.
   std::vector<Eigen::MatrixXd> xi(static_cast<std::size_t>(q), Eigen::MatrixXd::Zero((S + 1) * l, S));
@@ -162,13 +168,12 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
         failed = true;
         continue;
       }
+      y1 -= y0;
       for (int k = s; k < S; ++k)  // causal: segment s acts on segments s, s + 1, ...
         for (Eigen::Index o = 0; o < ny; ++o)
-          for (Eigen::Index j = 0; j < m; ++j) {
-            const Eigen::Index t = sub(k, j);
+          for (Eigen::Index j = 0; j < m; ++j)
             xi[static_cast<std::size_t>(i)]((k + 1) * l + o * m + j, s) =
-                (y1(t, o) - y0(t, o)) / h * scale[static_cast<std::size_t>(i)] / sigma[o];
-          }
+                mean_over(y1, o, k, j) / h * scale[static_cast<std::size_t>(i)] / sigma[o];
     }
   };
   {
@@ -815,8 +820,12 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
                 ep.has_ee = true;
                 ep.ee_lo = std::max(ee->second.box[c].lower(), mp.min);
                 ep.ee_hi = std::min(ee->second.box[c].upper(), mp.max);
-                ep.lo = ep.ee_lo;
-                ep.hi = ep.ee_hi;
+                // Each set holds the truth under its own bound, so under both the truth lies in
+                // their intersection. Disjoint sets mean one bound is violated: then the hull.
+                const bool meet = ep.ee_lo <= ep.oe_hi && ep.oe_lo <= ep.ee_hi;
+                ep.lo = meet ? std::max(ep.ee_lo, ep.oe_lo) : std::min(ep.ee_lo, ep.oe_lo);
+                ep.hi = meet ? std::min(ep.ee_hi, ep.oe_hi) : std::max(ep.ee_hi, ep.oe_hi);
+                if (!meet) d.bound_note += "; the equation-error and output-error intervals of " + pn + " are disjoint (one bound is violated): their hull is reported";
               }
           const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
           ep.stat_lo = ep.estimate - 1.96 * sd;
@@ -977,7 +986,9 @@ std::string diagnosis_text(const Diagnosis& d) {
     o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
     for (const auto& p : e.parameters)
       o << "     " << p.name << " = " << fmt(p.estimate, 5) << ", guaranteed interval [" << fmt(p.lo, 5) << ", "
-        << fmt(p.hi, 5) << "]" << (p.has_ee ? " (equation error; output error [" + fmt(p.oe_lo, 5) + ", " + fmt(p.oe_hi, 5) + "])" : " (output error)")
+        << fmt(p.hi, 5) << "]"
+        << (p.has_ee ? " (equation error [" + fmt(p.ee_lo, 5) + ", " + fmt(p.ee_hi, 5) + "], output error [" + fmt(p.oe_lo, 5) + ", " + fmt(p.oe_hi, 5) + "])"
+                     : " (output error)")
         << ", statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
     o << "     evidence: " << e.evidence << "\n";
   }

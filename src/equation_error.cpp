@@ -10,6 +10,7 @@
 
 #include "sets/feasible_parameter_set.hpp"
 #include "sets/interval.hpp"
+#include "sets/linear_program.hpp"
 #include "sets/simulation.hpp"
 
 namespace sets {
@@ -49,8 +50,6 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
   Simulator sim(model, data, {1});  // time, sample time and the same input errors as everywhere
   const int N = sim.samples();
   const double Ts = sim.sample_time();
-  const int w = options.window > 0 ? options.window : std::clamp(N / 500, 4, 100);
-  if (N < 8 * w) return fail("the record is too short for the integration window");
 
   // Measured symbols: inputs, and every model symbol compared with a column.
   std::map<std::string, Eigen::VectorXd> measured;
@@ -72,15 +71,13 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
         if (is_state && !measured.count(z)) derivative_of[z] = s.name;
       }
   int order = 0;
-  Eigen::VectorXd D = Eigen::VectorXd::Zero(N);  // the integrated derivative, exact in measurements
+  const Eigen::VectorXd* integrated = nullptr;  // x (order 1) or p with p' = x (order 2)
   if (measured.count(state)) {
     order = 1;
-    const Eigen::VectorXd& x = measured[state];
-    for (int t = w; t < N; ++t) D[t] = x[t] - x[t - w];
+    integrated = &measured[state];
   } else if (derivative_of.count(state)) {
     order = 2;
-    const Eigen::VectorXd& p = measured[derivative_of[state]];
-    for (int t = 2 * w; t < N; ++t) D[t] = p[t] - 2 * p[t - w] + p[t - 2 * w];
+    integrated = &measured[derivative_of[state]];
   } else {
     return fail("the state is neither measured nor the derivative of a measured state");
   }
@@ -131,6 +128,21 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
   mu::Parser f;
   compile(f, *f_text);
 
+  // One attempt per integration window w (samples).
+  auto attempt = [&](int w) -> EquationErrorResult {
+  EquationErrorResult res;
+  auto fail = [&](const std::string& why) {
+    res.note = "equation-error PUI not built for \"" + state + "\": " + why;
+    return res;
+  };
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(N);  // the integrated derivative, exact in measurements
+  {
+    const Eigen::VectorXd& x = *integrated;
+    if (order == 1)
+      for (int t = w; t < N; ++t) D[t] = x[t] - x[t - w];
+    else
+      for (int t = 2 * w; t < N; ++t) D[t] = x[t] - 2 * x[t - w] + x[t - 2 * w];
+  }
   const int wv = std::max(1, w / 4);
   std::map<std::string, Eigen::VectorXd> zhat;
   std::map<std::string, double> rho;
@@ -342,6 +354,41 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
   } catch (const mu::Parser::exception_type& e) {
     return fail("expression evaluation failed: " + e.GetMsg());
   }
+  return res;
+  };
+
+  // Windows from N/500 to N/25 samples: short windows keep more of the record's detail, long ones
+  // average the measurement noise of the differences. Each PUI holds under its own stated bound;
+  // the one with the smallest total relative width is reported.
+  std::vector<int> windows;
+  if (options.window > 0) {
+    windows.push_back(options.window);
+  } else {
+    for (int div : {500, 200, 100, 50, 25}) {
+      const int w = std::clamp(N / div, 4, 500);
+      if (N >= 8 * w && std::find(windows.begin(), windows.end(), w) == windows.end()) windows.push_back(w);
+    }
+  }
+  if (windows.empty() || N < 8 * windows.front()) return fail("the record is too short for the integration window");
+  double best = inf;
+  for (int w : windows) {
+    EquationErrorResult r = attempt(w);
+    if (!r.built) {
+      if (!res.built) res = r;
+      continue;
+    }
+    double width = 0;
+    for (Eigen::Index c = 0; c < r.box.size(); ++c) {
+      const auto& nm = r.parameters[static_cast<std::size_t>(c)];
+      const double v = std::abs(model.parameter(nm)->value);
+      width += (r.box[c].upper() - r.box[c].lower()) / (v > 0 ? v : 1.0);
+    }
+    if (!res.built || width < best) {
+      best = width;
+      res = r;
+    }
+  }
+  if (res.built) res.note += "; windows tried: " + std::to_string(windows.size()) + ", the narrowest reported";
   return res;
 }
 

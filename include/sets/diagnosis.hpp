@@ -72,8 +72,9 @@ struct FrequencyBand {
 struct EffectParameter {
   std::string name;
   double estimate = 0;
-  double lo = 0, hi = 0;            // guaranteed PUI under a stated bound: the equation-error one when
-                                    // it was built, else the output-error one; +-inf if unbounded
+  double lo = 0, hi = 0;            // guaranteed PUI under the stated bounds: the intersection of the
+                                    // output-error and equation-error PUIs (the output-error one alone
+                                    // when no equation-error PUI was built); +-inf if unbounded
   double oe_lo = 0, oe_hi = 0;      // PUI of the output error linearised at the estimate
   bool has_ee = false;              // an equation-error PUI was built (sets/equation_error.hpp)
   double ee_lo = 0, ee_hi = 0;
