@@ -9,6 +9,7 @@
 #include <random>
 
 #include "sets/diagnosis.hpp"
+#include "sets/equation_error.hpp"
 #include "sets/error.hpp"
 #include "sets/model_file.hpp"
 #include "sets/recording.hpp"
@@ -203,6 +204,41 @@ TEST(Diagnosis, VaryingParameterNamesTheSteppingParameterAndWhen) {
   EXPECT_GT(v.explained, d.varying[1].explained);
 }
 
+// Equation-error PUIs of the Coulomb plant's force balance, measured at values a little off the
+// truth (as an estimate would be): every true parameter must lie in its interval, and the
+// parameters that enter nonlinearly or through prev() are refused with a reason.
+TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
+  const SyntheticPlant p = synthetic_plant("coulomb_friction");
+  ModelFile m = p.nominal;
+  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
+  ModelParameter fc;
+  fc.name = "Fc";
+  m.parameters.push_back(fc);
+  const std::vector<std::pair<std::string, double>> truth{{"m", 1.0}, {"k", 4.0}, {"c", 0.8}, {"Fc", 0.3}};
+  const std::vector<double> off{1.03, 3.9, 0.84, 0.28};
+  for (std::size_t i = 0; i < truth.size(); ++i) m.parameter(truth[i].first)->value = off[i];
+  const EquationErrorResult r = equation_error_pui(m, p.estimation, "v");
+  ASSERT_TRUE(r.built) << r.note;
+  EXPECT_EQ(r.order, 2);
+  ASSERT_EQ(r.parameters.size(), 4u);
+  EXPECT_EQ(r.parameters.front(), "m");  // the inertia: m * v' is affine in k, c, Fc
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    double tv = 0;
+    for (const auto& [n, v] : truth)
+      if (n == r.parameters[i]) tv = v;
+    EXPECT_LE(r.box[static_cast<Eigen::Index>(i)].lower(), tv) << r.parameters[i];
+    EXPECT_GE(r.box[static_cast<Eigen::Index>(i)].upper(), tv) << r.parameters[i];
+  }
+  ModelFile nonlinear = m;
+  *nonlinear.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v)*exp(-(v/m)^2))/m";
+  EXPECT_FALSE(equation_error_pui(nonlinear, p.estimation, "v").built);
+  ModelFile delayed = m;
+  *delayed.derivative("v") = "(K*prev(u, 3) - k*x - c*v)/m";
+  const EquationErrorResult rd = equation_error_pui(delayed, p.estimation, "v");
+  EXPECT_FALSE(rd.built);
+  EXPECT_NE(rd.note.find("prev"), std::string::npos) << rd.note;
+}
+
 TEST(Diagnosis, EmpsNamesCoulombFrictionAndOffset) {
   const auto model = test::shared_data("emps/nominal.json");
   const auto est = test::shared_data("emps/estimation.csv");
@@ -222,6 +258,12 @@ TEST(Diagnosis, EmpsNamesCoulombFrictionAndOffset) {
   EXPECT_LE(off.lo, -3.2);
   EXPECT_GE(off.hi, -3.2);
   EXPECT_GE(d.fit_augmented_validation.at(1), 90.0);  // u
+  // The equation-error PUIs exist for both and are much narrower than the output-error ones
+  // (+-40 N before they were built).
+  EXPECT_TRUE(fc.has_ee);
+  EXPECT_TRUE(off.has_ee);
+  EXPECT_LT(fc.hi - fc.lo, 25.0);
+  EXPECT_LT(off.hi - off.lo, 15.0);
 }
 
 TEST(Recording, MatFileHasTheSameRecordAsTheCsv) {

@@ -56,7 +56,9 @@ struct VaryingParameter {
   std::string name;
   double value = 0;            // calibrated constant value
   double lo = 0, hi = 0;       // range of the estimated trajectory
-  double explained = 0;        // share of the squared residual the trajectory explains
+  double explained = 0;        // share of the residual's window-norm bound (h^T eps of the l-inf
+                               // method) the trajectory removes
+  double explained_squared = 0;  // share of the squared residual it removes
   std::vector<std::pair<double, double>> when;  // time windows holding the largest jumps
   double bound = 0;            // rho-hat: largest |trajectory - value| (l-inf estimate), parameter units
   std::vector<SegmentValue> trajectory;  // the estimate reported (sparse when it was solved)
