@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
     if (suite) {
       // Every plant of the suite: true effect against the first effect named.
       std::cout << "| plant | true effect | named (ranked) | right | nominal fit (val) | augmented fit (val) | s | true value: "
-                   "guaranteed interval (EE / OE) |\n"
+                   "guaranteed interval (equation error, output error) |\n"
                    "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
       int right = 0, total = 0, clean = 0, clean_ok = 0, checked = 0, contained = 0;
       for (const auto& name : synthetic_plant_names()) {
@@ -169,8 +169,10 @@ int main(int argc, char** argv) {
                 ++checked;
                 contained += in;
                 char t[256];
-                std::snprintf(t, sizeof t, "%s = %g: [%.4g, %.4g] (%s / [%.4g, %.4g]) %s", pn.c_str(), tv, ep.lo, ep.hi,
-                              ep.has_ee ? "EE" : "no EE", ep.oe_lo, ep.oe_hi, in ? "contains" : "**misses**");
+                char ee[96] = "none";
+                if (ep.has_ee) std::snprintf(ee, sizeof ee, "[%.4g, %.4g]%s", ep.ee_lo, ep.ee_hi, ep.ee_lo <= tv && tv <= ep.ee_hi ? "" : " **misses**");
+                std::snprintf(t, sizeof t, "%s = %g: [%.4g, %.4g] %s (EE %s, OE [%.4g, %.4g])", pn.c_str(), tv, ep.lo, ep.hi,
+                              in ? "contains" : "**misses**", ee, ep.oe_lo, ep.oe_hi);
                 truth += (truth.empty() ? "" : "; ") + std::string(t);
               }
         std::cout << "| " << name << " | " << p.true_effect << " | " << named << " | " << (ok ? "yes" : "**no**") << buf << " "
