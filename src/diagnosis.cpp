@@ -248,22 +248,22 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
       vp.trajectory.push_back({time[static_cast<std::size_t>(a[static_cast<std::size_t>(s)])],
                                time[static_cast<std::size_t>(a[static_cast<std::size_t>(s + 1)] - 1)], v});
     }
-    // Jumps above mu; neighbouring ones are one event, whose window runs from the start of the
-    // segment before the first jump to the end of the last (a step inside segment j shows as
-    // jumps at j and/or j + 1).
-    std::vector<std::pair<double, std::pair<int, int>>> events;
+    // Jumps above mu; neighbouring jumps of the same sign are one step, whose window runs from the
+    // start of the segment before the first jump to the end of the last (a step inside segment j
+    // shows as jumps at j and/or j + 1). Steps are ranked by their total size.
+    std::vector<std::pair<double, std::pair<int, int>>> events;  // (signed size, (first, last))
     for (int s = 1; s < S; ++s) {
       const double dlt = pi[s] - pi[s - 1];
       if (std::abs(dlt) <= mu * (1 + 1e-6)) continue;
       vp.jumps.emplace_back(time[static_cast<std::size_t>(a[static_cast<std::size_t>(s)])], sc * dlt);
-      if (!events.empty() && events.back().second.second == s - 1) {
-        events.back().first += std::abs(dlt);
+      if (!events.empty() && events.back().second.second == s - 1 && (events.back().first > 0) == (dlt > 0)) {
+        events.back().first += dlt;
         events.back().second.second = s;
       } else {
-        events.push_back({std::abs(dlt), {s, s}});
+        events.push_back({dlt, {s, s}});
       }
     }
-    std::sort(events.begin(), events.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    std::sort(events.begin(), events.end(), [](const auto& x, const auto& y) { return std::abs(x.first) > std::abs(y.first); });
     for (std::size_t e = 0; e < std::min<std::size_t>(3, events.size()); ++e)
       vp.when.emplace_back(time[static_cast<std::size_t>(a[static_cast<std::size_t>(events[e].second.first - 1)])],
                            time[static_cast<std::size_t>(a[static_cast<std::size_t>(events[e].second.second + 1)] - 1)]);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include "sets/diagnosis.hpp"
 #include "sets/equation_error.hpp"
@@ -194,6 +195,16 @@ TEST(Diagnosis, VaryingParameterNamesTheSteppingParameterAndWhen) {
   const Diagnosis d = diagnose(parse_model(nominal), r, nullptr, opt);
   ASSERT_EQ(d.varying.size(), 3u);
   const VaryingParameter& v = d.varying.front();
+  std::ostringstream trace;  // the estimates, shown when an expectation fails
+  for (const auto& p : d.varying) {
+    trace << p.name << " (" << p.method << ", explained " << p.explained << ", squared " << p.explained_squared << "):";
+    for (const auto& s : p.trajectory) trace << " " << s.value;
+    trace << "; when:";
+    for (const auto& w : p.when) trace << " [" << w.first << ", " << w.second << "]";
+    trace << "\n";
+  }
+  if (std::getenv("SETS_VERBOSE")) std::cout << trace.str();
+  SCOPED_TRACE(trace.str());
   EXPECT_EQ(v.name, "k");
   ASSERT_FALSE(v.when.empty());
   EXPECT_LE(v.when.front().first, 23.7);
