@@ -9,6 +9,7 @@
 
 #include "sets/error.hpp"
 #include "sets/linear_program.hpp"
+#include "certified_extent.hpp"
 #include "verified_linear_algebra.hpp"
 
 namespace sets {
@@ -71,60 +72,21 @@ std::vector<double> safe_maxima(const HPolytope& P, const std::vector<Eigen::Vec
   const int n = P.dimension();
   for (const auto& d : dirs)
     if (d.size() != n) throw InputError(std::string(what) + ": direction has the wrong dimension");
-  LinearProgram lp = make_lp(P);
-  // Phase 1: floating-point extent of every coordinate.
-  Eigen::VectorXd flo(n), fhi(n);
-  for (int j = 0; j < n; ++j)
-    for (Sense s : {Sense::minimize, Sense::maximize}) {
-      lp.set_objective_coordinate(j, s);
-      LpSolution sol = lp.solve();
-      if (sol.status == LpStatus::infeasible) {
-        lp.reset_basis();
-        sol = lp.solve_exact();
-        if (sol.status == LpStatus::infeasible) throw_empty(what);
-      }
-      const double v = sol.status == LpStatus::unbounded ? (s == Sense::minimize ? -inf : inf) : sol.objective;
-      (s == Sense::minimize ? flo : fhi)[j] = v;
-    }
   if (n == 0) {
     if (is_empty(P) == BoolInterval::yes) throw_empty(what);
     return std::vector<double>(dirs.size(), 0.0);
   }
-  // Phase 2: an artificial box X slightly larger than the float extent. If every certified
-  // coordinate bound over P ∩ X lies strictly inside X's finite faces, then P ⊂ X (P convex),
-  // and safe bounds over P ∩ X hold for P.
-  const Eigen::VectorXd width = (fhi - flo).unaryExpr([](double w) { return std::isfinite(w) ? w : 0.0; });
-  for (double factor : {1e-2, 1e-1, 1.0, 10.0}) {
-    Eigen::VectorXd xlo(n), xhi(n);
-    for (int j = 0; j < n; ++j) {
-      xlo[j] = std::isfinite(flo[j]) ? flo[j] - factor * width[j] - 1e-8 * (1 + std::abs(flo[j])) : -inf;
-      xhi[j] = std::isfinite(fhi[j]) ? fhi[j] + factor * width[j] + 1e-8 * (1 + std::abs(fhi[j])) : inf;
-      lp.set_variable_bounds(j, xlo[j], xhi[j]);
-    }
-    bool ok = true;
-    for (int j = 0; j < n && ok; ++j)
-      for (Sense s : {Sense::minimize, Sense::maximize}) {
-        if ((s == Sense::minimize && xlo[j] == -inf) || (s == Sense::maximize && xhi[j] == inf)) continue;
-        lp.set_objective_coordinate(j, s);
-        const LpSolution sol = lp.solve();
-        if (sol.status != LpStatus::optimal) {
-          ok = false;
-          break;
-        }
-        const double bound = lp.safe_bound(sol);
-        if (s == Sense::minimize ? !(bound > xlo[j]) : !(bound < xhi[j])) ok = false;
-      }
-    if (!ok) continue;
-    std::vector<double> out;
-    out.reserve(dirs.size());
-    for (const auto& d : dirs) {
-      lp.set_objective(d, Sense::maximize);
-      const LpSolution sol = lp.solve();
-      out.push_back(sol.status == LpStatus::optimal ? lp.safe_bound(sol) : inf);
-    }
-    return out;
-  }
-  return std::vector<double>(dirs.size(), inf);  // nothing certified: +inf is still a bound
+  LinearProgram lp = make_lp(P);
+  const detail::Extent e = detail::certified_extent(
+      lp,
+      [&](int& lps) {
+        ++lps;
+        return lp.solve();
+      },
+      dirs, true);
+  if (e.status == detail::ExtentStatus::empty) throw_empty(what);
+  if (e.status == detail::ExtentStatus::unknown) return std::vector<double>(dirs.size(), inf);
+  return e.maxima;
 }
 
 }  // namespace

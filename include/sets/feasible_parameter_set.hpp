@@ -107,6 +107,23 @@ struct PuiResult {
 /// orthants). With `safe`, each finite end is a rigorous bound; see docs/architecture.md.
 PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options = {});
 
+/// Upper bounds on the support function max { d^T theta : theta in the FPS } for each direction
+/// d (a minimum is minus the maximum over -d). One working-set LP per orthant answers all
+/// directions, warm-started, adding violated samples until none is; with `safe` every value is
+/// a Neumaier–Shcherbina bound over the artificial box that certifies the PUIs (see
+/// docs/architecture.md), so it holds for the whole set. +inf: unbounded or not certified.
+/// Interval regressors: the maximum over the orthants that pui() visits with the same options.
+struct FpsSupport {
+  std::vector<double> maxima;   // one per direction; -inf for an empty set
+  IntervalVector box;           // the PUIs found on the way
+  bool empty = false;           // the data falsify the model
+  bool guaranteed = false;      // every finite value certified by a safe bound
+  Falsification falsification;  // filled when empty
+  int lp_solves = 0;
+};
+FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions,
+                   const PuiOptions& options = {});
+
 /// The samples whose constraints conflict (support of the minimax-violation fit), or an empty
 /// list if a parameter satisfies them all.
 Falsification find_conflict(const FeasibleParameterSet& fps);
