@@ -239,15 +239,14 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
     }
     const auto fps = FeasibleParameterSet::from_data(Phi, yr, delta);
     // Extremes of Re and Im Gamma(w_j)^T theta over the FPS: 4 directions per frequency, all from
-    // one working-set LP (row generation) with safe bounds, as for the PUIs.
+    // one working-set LP (row generation) with safe bounds, as for the PUIs. Ordered as four
+    // sweeps along the grid (max Re, min Re, max Im, min Im): neighbouring frequencies have
+    // nearby optima, so each LP starts close to its optimal basis.
     std::vector<Eigen::VectorXd> dirs;
     dirs.reserve(static_cast<std::size_t>(4 * nw));
-    for (int j = 0; j < nw; ++j) {
-      dirs.push_back(Gre.col(j));
-      dirs.push_back(-Gre.col(j));
-      dirs.push_back(Gim.col(j));
-      dirs.push_back(-Gim.col(j));
-    }
+    for (const Eigen::MatrixXd* G : {&Gre, &Gim})
+      for (double sign : {1.0, -1.0})
+        for (int j = 0; j < nw; ++j) dirs.push_back(sign * G->col(j));
     const FpsSupport sup = support(fps, dirs);
     S.lp_solves += sup.lp_solves;
     if (sup.empty) {
@@ -264,8 +263,8 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
       return v;
     };
     for (int j = 0; j < nw; ++j) {
-      const double re_hi = extreme(4 * j), re_lo = -extreme(4 * j + 1);
-      const double im_hi = extreme(4 * j + 2), im_lo = -extreme(4 * j + 3);
+      const double re_hi = extreme(j), re_lo = -extreme(nw + j);
+      const double im_hi = extreme(2 * nw + j), im_lo = -extreme(3 * nw + j);
       FrequencyRegion& P = S.regions[j];
       P.shape = RegionShape::rectangle;
       P.centre = {0.5 * (re_lo + re_hi), 0.5 * (im_lo + im_hi)};

@@ -11,6 +11,7 @@
 
 #include "sets/error.hpp"
 #include "sets/feasible_parameter_set.hpp"
+#include "sets/linear_program.hpp"
 
 namespace {
 
