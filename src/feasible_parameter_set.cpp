@@ -34,6 +34,7 @@ FeasibleParameterSet FeasibleParameterSet::from_data(const Eigen::Ref<const Eige
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
   f.Phi_.resize(Phi.rows(), Phi.cols());
   f.Y_.resize(Phi.rows());
+  f.n_ = Phi.rows();
   for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
     for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
       if (!std::isfinite(Phi(t, j)))
@@ -73,6 +74,7 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
   }
   f.Phi_ = Phi;
   f.Y_ = Y;
+  f.n_ = Phi.rows();
   return f;
 }
 
@@ -96,17 +98,20 @@ void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& 
   }
   if (!std::isfinite(Y.lower()) || !std::isfinite(Y.upper()))
     throw InputError(where + ", output bound is not finite");
-  const Eigen::Index n = Y_.size();
-  Phi_.conservativeResize(n + 1, p_);
-  Phi_.row(n) = Phi.transpose();
-  Y_.conservativeResize(n + 1);
-  Y_[n] = Y;
+  if (n_ == Phi_.rows()) {  // grow geometrically: a loop of add_strip stays linear in N
+    const Eigen::Index capacity = std::max<Eigen::Index>(16, 2 * n_);
+    Phi_.conservativeResize(capacity, p_);
+    Y_.conservativeResize(capacity);
+  }
+  Phi_.row(n_) = Phi.transpose();
+  Y_[n_] = Y;
+  ++n_;
 }
 
 BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
   if (theta.size() != p_) throw InputError("FeasibleParameterSet::contains: wrong dimension");
   BoolInterval result = BoolInterval::yes;
-  for (Eigen::Index t = 0; t < Y_.size(); ++t) {
+  for (Eigen::Index t = 0; t < n_; ++t) {
     // The range of phi^T theta over the regressor box is [lo_true, hi_true]; L and U enclose them.
     Interval L(0.0), U(0.0);
     for (int j = 0; j < p_; ++j) {
@@ -123,15 +128,15 @@ BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::Vector
 }
 
 Eigen::VectorXd FeasibleParameterSet::least_squares() const {
-  const Eigen::MatrixXd A = midpoint(Phi_);
-  const Eigen::VectorXd y = midpoint(Y_);
+  const Eigen::MatrixXd A = midpoint(IntervalMatrix(regressors()));
+  const Eigen::VectorXd y = midpoint(IntervalVector(outputs()));
   return A.colPivHouseholderQr().solve(y);
 }
 
 namespace {
 
 // Row coefficients of sample t in orthant s: the minimising (lower) and maximising (upper) ends.
-void orthant_rows(const IntervalMatrix& Phi, Eigen::Index t, const Orthant& s, Eigen::VectorXd& lo_row,
+void orthant_rows(const Eigen::Ref<const IntervalMatrix>& Phi, Eigen::Index t, const Orthant& s, Eigen::VectorXd& lo_row,
                   Eigen::VectorXd& hi_row) {
   const Eigen::Index p = Phi.cols();
   lo_row.resize(p);
@@ -150,7 +155,7 @@ HPolytope FeasibleParameterSet::orthant_polytope(const Orthant& s) const {
     throw InputError("orthant_polytope: orthant has the wrong dimension");
   if (s.empty() && eiv_)
     throw InputError("orthant_polytope: interval regressors need an orthant");
-  const Eigen::Index N = Y_.size();
+  const Eigen::Index N = n_;
   const Eigen::Index extra = s.empty() ? 0 : p_;
   Eigen::MatrixXd A(2 * N + extra, p_);
   Eigen::VectorXd b(2 * N + extra);
@@ -435,7 +440,7 @@ Falsification find_conflict(const FeasibleParameterSet& fps) {
   // min t  s.t.  Y_lo - t <= phi_c^T theta <= Y_hi + t  (central regressors): the rows that
   // carry the optimal multipliers are a set of samples that cannot hold together.
   const int p = fps.dimension();
-  const Eigen::MatrixXd A = midpoint(fps.regressors());
+  const Eigen::MatrixXd A = midpoint(IntervalMatrix(fps.regressors()));
   LinearProgram lp(p + 1);
   lp.set_variable_bounds(p, 0, inf);
   Eigen::VectorXd row(p + 1);

@@ -66,6 +66,52 @@ LinearProgram make_lp(const HPolytope& P) {
   throw EmptySetError(std::string(what) + ": the polytope is empty");
 }
 
+// A certified bound on max d^T x over P from an optimal vertex, needing no box (so it works for
+// unbounded P): n rows S active at the LP optimum with A_S invertible give the multipliers
+// y_S = A_S^{-T} d. If an enclosure of the exact y_S is >= 0, weak duality
+// d^T x = y_S^T A_S x <= y_S^T b_S holds for every x in P, and the sup over the enclosure bounds
+// it. +inf when no such vertex certificate exists (unbounded direction, degenerate or
+// ill-conditioned vertex).
+double vertex_dual_bound(const HPolytope& P, LinearProgram& lp, const Eigen::VectorXd& d) {
+  const int n = P.dimension(), m = P.num_constraints();
+  for (int j = 0; j < n; ++j) lp.set_variable_bounds(j, -inf, inf);
+  lp.set_objective(d, Sense::maximize);
+  const LpSolution sol = lp.solve();
+  if (sol.status != LpStatus::optimal) return inf;
+  // Rows carrying a multiplier first, then the tightest other active rows, until n rows.
+  std::vector<std::pair<double, int>> order;
+  const Eigen::VectorXd slack = P.b() - P.A() * sol.x;
+  for (int i = 0; i < m; ++i) {
+    if (!std::isfinite(P.b()[i])) continue;
+    const double scale = 1 + std::abs(P.b()[i]) + P.A().row(i).cwiseAbs().sum() * sol.x.cwiseAbs().maxCoeff();
+    const double key = sol.row_dual[i] != 0 ? -1.0 : std::abs(slack[i]) / scale;
+    if (key <= 1e-7) order.emplace_back(key, i);
+  }
+  if (static_cast<int>(order.size()) < n) return inf;
+  std::sort(order.begin(), order.end());
+  Eigen::MatrixXd AtS(n, n);  // A_S^T
+  Eigen::VectorXd bS(n);
+  for (int k = 0; k < n; ++k) {
+    AtS.col(k) = P.A().row(order[static_cast<std::size_t>(k)].second).transpose();
+    bS[k] = P.b()[order[static_cast<std::size_t>(k)].second];
+  }
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(AtS);
+  if (!lu.isInvertible()) return inf;
+  const Eigen::MatrixXd X = lu.inverse();
+  const auto dev = detail::inverse_deviation_bound(AtS, X);  // ||A_S^{-T} - X||_2
+  if (!dev) return inf;
+  // y = X d + (A_S^{-T} - X) d: each entry within ||A_S^{-T} - X||_2 ||d||_2 of (X d)_k.
+  const IntervalVector Xd = multiply(X, detail::iv(d));
+  const Interval err = Interval(*dev) * Interval(detail::norm_upper(detail::iv(d)));
+  Interval total(0.0);
+  for (int k = 0; k < n; ++k) {
+    const Interval y = Xd[k] + Interval(-err.upper(), err.upper());
+    if (y.lower() < 0) return inf;  // a multiplier that may be negative certifies nothing
+    total += y * Interval(bS[k]);
+  }
+  return total.upper();
+}
+
 // Certified upper bounds of max d^T x over P for each direction (see the header for the method).
 std::vector<double> safe_maxima(const HPolytope& P, const std::vector<Eigen::VectorXd>& dirs,
                                 const char* what) {
@@ -86,7 +132,12 @@ std::vector<double> safe_maxima(const HPolytope& P, const std::vector<Eigen::Vec
       dirs, true);
   if (e.status == detail::ExtentStatus::empty) throw_empty(what);
   if (e.status == detail::ExtentStatus::unknown) return std::vector<double>(dirs.size(), inf);
-  return e.maxima;
+  // Where the box argument certified nothing (P unbounded, or the direction is), a bounded
+  // direction can still be certified by its optimal vertex.
+  std::vector<double> out = e.maxima;
+  for (std::size_t k = 0; k < dirs.size(); ++k)
+    if (out[k] == inf) out[k] = vertex_dual_bound(P, lp, dirs[k]);
+  return out;
 }
 
 }  // namespace

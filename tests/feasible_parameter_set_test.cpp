@@ -341,3 +341,24 @@ TEST(FpsSupport, UnboundedDirectionIsInfinite) {
   EXPECT_EQ(s.maxima[0], sets::inf);
   EXPECT_EQ(s.maxima[1], sets::inf);
 }
+
+// add_strip grows its storage geometrically; the set it builds is the same as from_data's.
+TEST(FeasibleParameterSet, AddStripBuildsTheSameSetAsFromData) {
+  const Data d = make_data(3, 5000, 11);
+  const auto bulk = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  FeasibleParameterSet grown(3);
+  for (int t = 0; t < 5000; ++t) grown.add_strip(d.Phi.row(t).transpose(), d.y[t], d.delta[t]);
+  ASSERT_EQ(grown.size(), bulk.size());
+  ASSERT_EQ(grown.regressors().rows(), 5000);
+  for (int t = 0; t < 5000; ++t) {
+    for (int j = 0; j < 3; ++j) ASSERT_EQ(grown.regressors()(t, j).lower(), bulk.regressors()(t, j).lower());
+    ASSERT_EQ(grown.outputs()[t].lower(), bulk.outputs()[t].lower());
+    ASSERT_EQ(grown.outputs()[t].upper(), bulk.outputs()[t].upper());
+  }
+  const auto a = sets::pui(grown), b = sets::pui(bulk);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_EQ(a.box[j].lower(), b.box[j].lower());
+    EXPECT_EQ(a.box[j].upper(), b.box[j].upper());
+  }
+  EXPECT_EQ(grown.contains(d.theta), bulk.contains(d.theta));
+}

@@ -41,10 +41,12 @@ class FeasibleParameterSet {
   void add_strip(const IntervalVector& Phi, const Interval& Y);
 
   int dimension() const { return p_; }
-  int size() const { return static_cast<int>(Y_.size()); }
+  int size() const { return static_cast<int>(n_); }
   bool has_interval_regressors() const { return eiv_; }
-  const IntervalMatrix& regressors() const { return Phi_; }
-  const IntervalVector& outputs() const { return Y_; }
+  /// The samples' regressors (size() x dimension()) and outputs: views of the first size() rows
+  /// of the storage, which add_strip grows geometrically (amortised O(p) per strip).
+  Eigen::Ref<const IntervalMatrix> regressors() const { return Phi_.topRows(n_); }
+  Eigen::Ref<const IntervalVector> outputs() const { return Y_.head(n_); }
 
   /// Is theta in the set? `unknown` only when rounding cannot decide.
   BoolInterval contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const;
@@ -57,8 +59,9 @@ class FeasibleParameterSet {
  private:
   int p_;
   bool eiv_ = false;
-  IntervalMatrix Phi_;  // N x p
-  IntervalVector Y_;    // N
+  Eigen::Index n_ = 0;  // samples; the rows of Phi_ and Y_ beyond n_ are spare capacity
+  IntervalMatrix Phi_;  // capacity x p
+  IntervalVector Y_;    // capacity
 };
 
 enum class OrthantSelection {
