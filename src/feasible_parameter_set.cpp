@@ -61,7 +61,7 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  // Same checks as add_strip, but one allocation (add_strip's row-by-row growth is quadratic).
+  // Same checks as add_strip, one allocation.
   for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
     const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
     for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
