@@ -59,14 +59,14 @@ const sets::OrthonormalBasis& basis() {
   return B;
 }
 
-// Priors that hold for G0 (checked by the app's --runs Monte Carlo): |g0(k)| <= M 0.88^k with
-// the app's derived M for this basis, rounded up; the impulse response within 2.5 * 0.975^s.
+// The app's priors for this basis (its "priors:" line, rounded up): 1.2 x max_k |g0(k)| / 0.88^k
+// and 1.2 x the impulse-response envelope with rate 0.975.
 sets::HinfPriors priors() {
   sets::HinfPriors p;
-  p.M = 0.5;
+  p.M = 0.992;
   p.rho = 0.88;
   p.u_bar = 1;
-  p.M_ic = 2.5;
+  p.M_ic = 0.414;
   p.rho_ic = 0.975;
   return p;
 }
