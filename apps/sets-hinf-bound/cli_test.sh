@@ -12,7 +12,7 @@ check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
   shift 4
   "$@" >"$dir/out" 2>&1
   local got=$?
-  if [[ $got -ne $want ]] || ! grep -qE "$pattern" "$dir/out"; then
+  if [[ $got -ne $want ]] || ! grep -qE -e "$pattern" "$dir/out"; then
     echo "FAIL $name: exit $got (want $want), pattern '$pattern'"
     sed 's/^/    /' "$dir/out" | tail -20
     fail=1
@@ -22,7 +22,7 @@ check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
 }
 
 # A small FIR system y(t) = 0.5 u(t-1) + 0.25 u(t-2) + 0.125 u(t-3) + v(t), |v| <= 0.01, u in [-1, 1]
-# (awk: no Python needed). Priors for a 10-tap FIR basis: |g(k)| <= 1 * 0.5^k holds.
+# (awk: no Python needed). Priors for a 10-tap FIR basis: |g(k)| <= 1 * 0.88^k (the default rho) holds.
 awk 'BEGIN {
   srand(5); T = 400; print "t,u,y";
   u1 = 0; u2 = 0; u3 = 0;
@@ -32,7 +32,7 @@ awk 'BEGIN {
     u3 = u2; u2 = u1; u1 = u;
   }
 }' >"$dir/good.csv"
-fir=(--basis fir --order 10 --M 1 --rho 0.5 --u-bar 0 --grid 20 --nominal-order 1 --weight-degree 4 --quiet)
+fir=(--basis fir --order 10 --M 1 --u-bar 0 --grid 20 --weight-degree 4 --quiet)
 good=(--data "$dir/good.csv" --u u --y y "${fir[@]}")
 
 check "good data, bounded noise" 0 "b = " -- "$app" "${good[@]}" --noise bounded --v-bar 0.01 --json "$dir/out.json"
