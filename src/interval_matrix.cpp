@@ -7,18 +7,6 @@
 
 namespace sets {
 
-IntervalVector to_interval(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  IntervalVector r(x.size());
-  for (Eigen::Index i = 0; i < x.size(); ++i) r[i] = Interval(x[i]);
-  return r;
-}
-IntervalMatrix to_interval(const Eigen::Ref<const Eigen::MatrixXd>& x) {
-  IntervalMatrix r(x.rows(), x.cols());
-  for (Eigen::Index j = 0; j < x.cols(); ++j)
-    for (Eigen::Index i = 0; i < x.rows(); ++i) r(i, j) = Interval(x(i, j));
-  return r;
-}
-
 Eigen::VectorXd lower(const IntervalVector& x) {
   return x.unaryExpr([](const Interval& v) { return v.lower(); });
 }

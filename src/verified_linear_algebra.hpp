@@ -11,10 +11,9 @@
 
 namespace sets::detail {
 
-/// Point enclosures of double vectors/matrices (the public to_interval overloads are ambiguous
-/// for plain VectorXd/MatrixXd arguments).
-inline IntervalVector iv(const Eigen::VectorXd& x) { return to_interval(Eigen::Ref<const Eigen::VectorXd>(x)); }
-inline IntervalMatrix im(const Eigen::MatrixXd& x) { return to_interval(Eigen::Ref<const Eigen::MatrixXd>(x)); }
+/// Point enclosures of double vectors/matrices (short names for the many uses in zonotope.cpp).
+inline IntervalVector iv(const Eigen::VectorXd& x) { return to_interval(x); }
+inline IntervalMatrix im(const Eigen::MatrixXd& x) { return to_interval(x); }
 
 /// Upper bound on the Frobenius norm of the magnitudes of an interval matrix (>= spectral norm).
 double frobenius_upper(const IntervalMatrix& M);

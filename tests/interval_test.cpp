@@ -243,3 +243,17 @@ TEST(Interval, RoundingControlSetsBothSseAndX87AndRestoresThem) {
   EXPECT_EQ(x87_rounding(), 0u) << "x87 rounding mode not restored";
 }
 #endif
+
+TEST(IntervalMatrix, ToIntervalHoldsTheDoublesExactly) {
+  const Eigen::Vector3d v(0.1, -2.5, 1e300);
+  Eigen::MatrixXd A(2, 3);
+  A << 1, 2, 3, 4, 5, 6.5;
+  const sets::IntervalVector iv = sets::to_interval(Eigen::VectorXd(v));  // plain VectorXd: unambiguous
+  const sets::IntervalMatrix iA = sets::to_interval(A);
+  const sets::IntervalVector iAv = sets::to_interval(A * v);  // an expression
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(iv[i].lower() == v[i] && iv[i].upper() == v[i]);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_TRUE(iA(i, j).lower() == A(i, j) && iA(i, j).upper() == A(i, j));
+  const Eigen::Vector2d Av = A * v;
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(iAv[i].lower(), Av[i]);
+}

@@ -36,9 +36,13 @@ namespace sets {
 using IntervalVector = Eigen::Matrix<Interval, Eigen::Dynamic, 1>;
 using IntervalMatrix = Eigen::Matrix<Interval, Eigen::Dynamic, Eigen::Dynamic>;
 
-/// Degenerate interval vector/matrix holding exactly the given doubles.
-IntervalVector to_interval(const Eigen::Ref<const Eigen::VectorXd>& x);
-IntervalMatrix to_interval(const Eigen::Ref<const Eigen::MatrixXd>& x);
+/// Degenerate interval vector/matrix holding exactly the given doubles (a vector gives an
+/// IntervalVector, a matrix an IntervalMatrix; one template, so no overload is ambiguous).
+template <typename Derived>
+Eigen::Matrix<Interval, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> to_interval(
+    const Eigen::MatrixBase<Derived>& x) {
+  return x.template cast<Interval>();
+}
 
 Eigen::VectorXd lower(const IntervalVector& x);
 Eigen::VectorXd upper(const IntervalVector& x);

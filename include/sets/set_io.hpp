@@ -8,7 +8,10 @@
 //   {"type": "zonotope",  "center": [..], "generators": [[column], ..]}
 //   {"type": "hpolytope", "A": [[row], ..], "b": [..]}          (b entries may be "inf")
 //   {"type": "vpolytope", "points": [[point], ..]}
-// The human-readable text form of each type is its `to_string`.
+// The human-readable text form of each type is its `to_string` (17 significant digits, so it also
+// round-trips exactly); `from_string` / `load_text` read it back, e.g.
+//   Box(dim=2, [[0, 1], [-1, 2.5]])
+//   HPolytope(dim=2, rows=[[1, 0 | 1], [0, 1 | inf]])
 
 #include <nlohmann/json.hpp>
 
@@ -46,5 +49,11 @@ Eigen::MatrixXd projection_polygon(const AnySet& set, int i, int j, int directio
 void write_polygon(std::ostream& os, const Eigen::MatrixXd& vertices);
 
 std::string to_string(const AnySet& set);
+/// Reads the text form of to_string. Throws InputError naming `where`, the line and column of a
+/// syntax error, or the offending field (through the same checks as from_json).
+AnySet from_string(const std::string& text, const std::string& where = "text");
+/// The text form in a file, written completely or not at all.
+void save_text(const std::string& path, const AnySet& set);
+AnySet load_text(const std::string& path);
 
 }  // namespace sets
