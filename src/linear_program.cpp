@@ -363,10 +363,6 @@ MilpSolution LinearProgram::solve_milp(const MilpOptions& options,
   parm.gmi_cuts = GLP_ON;
   parm.mir_cuts = GLP_ON;
   parm.fp_heur = GLP_ON;
-  if (options.proximity_search) {
-    parm.ps_heur = GLP_ON;
-    parm.ps_tm_lim = std::max(1, parm.tm_lim / 3);
-  }
   rc = glp_intopt(lp, &parm);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const int status = glp_mip_status(lp);

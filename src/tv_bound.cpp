@@ -159,37 +159,6 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   const Eigen::VectorXd offset = stack_samples(data.y) - data.regression.upsilon;
   const Eigen::VectorXd eps = o.epsilon * (1 + o.epsilon_slack);
 
-  // Big-M per (k, i): |Delta pi_i(k)| <= 2 max_abs_i (max_abs_i at k = 0), or tighter from the LPs.
-  Eigen::MatrixXd big_m(N, q);
-  for (int k = 0; k < N; ++k) big_m.row(k) = (k == 0 ? 1.0 : 2.0) * o.max_abs.transpose();
-  MilpOptions milp = o.milp;
-  if (o.tighten_big_m) {
-    LinearProgram bt(N * q);
-    for (int k = 0; k < N; ++k)
-      for (int i = 0; i < q; ++i) bt.set_variable_bounds(k * q + i, -o.max_abs[i], o.max_abs[i]);
-    ball.add_to(bt, offset, data.regression.xi, 0, eps);
-    Eigen::VectorXd c = Eigen::VectorXd::Zero(bt.num_variables());
-    for (int k = o.initial_difference ? 0 : 1; k < N; ++k)
-      for (int i = 0; i < q; ++i) {
-        c[k * q + i] = 1;
-        if (k > 0) c[(k - 1) * q + i] = -1;
-        double range = 0;
-        for (Sense sense : {Sense::maximize, Sense::minimize}) {
-          bt.set_objective(c, sense);
-          const LpSolution sol = bt.solve();
-          if (sol.status == LpStatus::infeasible)
-            throw NumericalError("sparse_bound: the MILP is infeasible: eps is below what any perturbation inside "
-                                 "max_abs can reach (use eps from linf_bound and a larger max_abs)");
-          const double b = sol.status == LpStatus::optimal ? bt.safe_bound(sol) : (sense == Sense::maximize ? inf : -inf);
-          range = std::max(range, std::abs(b));
-        }
-        big_m(k, i) = std::min(big_m(k, i), range);
-        c[k * q + i] = 0;
-        if (k > 0) c[(k - 1) * q + i] = 0;
-      }
-    milp.time_limit_s = std::max(1.0, o.milp.time_limit_s - seconds_since(t0));
-  }
-
   LinearProgram lp(N * q);
   for (int k = 0; k < N; ++k)
     for (int i = 0; i < q; ++i) lp.set_variable_bounds(k * q + i, -o.max_abs[i], o.max_abs[i]);
@@ -203,7 +172,7 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   auto bin = [&](int k, int i, int which) { return first_bin + ((k - k0) * q + i) * per + which; };
   for (int k = k0; k < N; ++k)
     for (int i = 0; i < q; ++i) {
-      const double mu = o.mu[i], M = big_m(k, i) + mu;
+      const double mu = o.mu[i], M = (k == 0 ? 1.0 : 2.0) * o.max_abs[i] + mu;
       std::vector<std::pair<int, double>> s{{k * q + i, 1.0}};
       if (k > 0) s.emplace_back((k - 1) * q + i, -1.0);
       auto row = s;
@@ -245,7 +214,7 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
     x.segment(blk.first_t, offset.size()) = (offset - data.regression.xi * pi).cwiseAbs();
     start = x;
   }
-  const MilpSolution s = lp.solve_milp(milp, start);
+  const MilpSolution s = lp.solve_milp(o.milp, start);
   if (s.status == MilpStatus::infeasible)
     throw NumericalError("sparse_bound: the MILP is infeasible: eps is below what any perturbation inside max_abs "
                          "can reach (use eps from linf_bound and a larger max_abs)");

@@ -181,35 +181,3 @@ TEST(TvRelinearisation, BadInputIsRejected) {
   EXPECT_THROW(sets::relinearised_linf_bound(m, x0, u, y, {w}, -1), sets::InputError);
   EXPECT_THROW(sets::relinearised_linf_bound(m, x0, u, y.topRows(N), {w}, 1), sets::InputError);
 }
-
-// Per-sample big-M from bound tightening cuts nothing a solution can reach: the MILP optimum is the
-// same as with the box's big-M (both solved to optimality on a small problem).
-TEST(TvRelinearisation, TightenedBigMKeepsTheMilpOptimum) {
-  const auto m = model3();
-  const int N = 16;
-  const Eigen::MatrixXd u = square_input(N, 4);
-  const Eigen::VectorXd x0 = Eigen::Vector2d::Zero();
-  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-  pi.block(5, 1, N - 5, 1).setConstant(0.5);
-  pi.block(9, 0, N - 9, 1).setConstant(-0.4);
-  const auto w = sets::WindowNorm::pulse(4, 0.25);
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> U(-0.02, 0.02);
-  Eigen::MatrixXd y = sets::simulate(m, x0, u, pi).y;
-  for (int k = 0; k <= N; ++k) y(k, 0) += U(rng);
-  const sets::TvBoundData data{sets::biaffine_regression(m, x0, u), y, {w}};
-  const auto lin = sets::linf_bound(data);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(3.0);
-  o.epsilon = lin.epsilon;
-  o.start = lin.pi;
-  o.milp = {30, 1e-6, false};
-  const auto plain = sets::sparse_bound(data, o);
-  o.tighten_big_m = true;
-  const auto tight = sets::sparse_bound(data, o);
-  ASSERT_TRUE(plain.status == sets::MilpStatus::optimal) << plain.gap;
-  ASSERT_TRUE(tight.status == sets::MilpStatus::optimal) << tight.gap;
-  EXPECT_NEAR(plain.objective, tight.objective, 1e-6);
-  EXPECT_GE(plain.changes.size(), 1u);  // not a trivial optimum
-}

@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
   double time_limit = 60, seconds = 6, mu_rel = 0.001, box_rel = 4, gap = 1e-4;
   unsigned seed = 1;
   std::string formulation = "single";
-  bool warm = true, verbose = false, proximity = false, tighten = false;
+  bool warm = true, verbose = false;
   int only = -1;
   double scale = 1;
   std::string milp_eps = "linf";
@@ -175,9 +175,6 @@ int main(int argc, char** argv) {
                  "re-linearise (1) around the l-inf estimate this many times (sequential LP; not in the paper; "
                  "0 = the paper's single expansion around pi = 0); the MILP uses the last linearisation")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--proximity-search", proximity, "GLPK proximity-search heuristic in the MILP (a third of the limit)");
-  app.add_flag("--tighten-big-m", tighten,
-               "per-sample big-M from 2Nq bound-tightening LPs before the MILP (their time counts against the limit)");
   app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
   try {
     app.parse(argc, argv);
@@ -196,8 +193,7 @@ int main(int argc, char** argv) {
     out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"mu_rel", mu_rel},
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
                        {"scale", scale}, {"milp_eps", milp_eps},
-                       {"plant", plant}, {"relinearise", relinearise},
-                       {"proximity_search", proximity}, {"tighten_big_m", tighten}};
+                       {"plant", plant}, {"relinearise", relinearise}};
     out["cases"] = nlohmann::json::array();
     std::vector<Case> selected = cases(table);
     if (only >= 0) {
@@ -300,8 +296,7 @@ int main(int argc, char** argv) {
                                  data.regression.xi * sets::stack_samples(pi));
         so.formulation =
             formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
-        so.milp = {time_limit, gap, verbose, proximity};
-        so.tighten_big_m = tighten;
+        so.milp = {time_limit, gap, verbose};
         if (warm) so.start = linf.pi;
         const auto m = sets::sparse_bound(data, so);
         const Eigen::VectorXd rms = sets::rms_tracking_error(m.pi, pi);

@@ -42,9 +42,6 @@ struct MilpOptions {
   double time_limit_s = 60;  // GLPK branch-and-cut stops here with its incumbent
   double relative_gap = 1e-6;
   bool verbose = false;
-  /// GLPK's proximity-search heuristic (ps_heur), limited to a third of the time limit: looks for
-  /// better incumbents near the current one; it does not improve the bound.
-  bool proximity_search = false;
 };
 
 struct MilpSolution {

@@ -87,10 +87,6 @@ struct SparseBoundOptions {
   bool initial_difference = true;
   SparseFormulation formulation = SparseFormulation::single_binary;
   MilpOptions milp{60, 1e-4, false};
-  /// Per-sample big-M from bound tightening: before the MILP, max and min of every Delta pi_i(k)
-  /// over the box and the window-norm ball (2Nq LPs, rigorous bounds from safe_bound) give
-  /// M_ik = max(hi, -lo) + mu_i, never above the box's. The time it takes is taken from milp's limit.
-  bool tighten_big_m = false;
   /// Warm start: a trajectory (N x q), e.g. the l-inf estimate; T, the binaries and the peak are
   /// completed from it. Empty = none. Ignored by GLPK if infeasible.
   Eigen::MatrixXd start;
