@@ -17,12 +17,15 @@
 #include <thread>
 
 #include "sets/calibration.hpp"
+#include "sets/equation_error.hpp"
 #include "sets/error.hpp"
 #include "sets/feasible_parameter_set.hpp"
 #include "sets/interval.hpp"
 #include "sets/linear_program.hpp"
 #include "sets/physics_catalogue.hpp"
 #include "sets/simulation.hpp"
+#include "sets/tv_bound.hpp"
+#include "sets/window_norm.hpp"
 
 namespace sets {
 
@@ -32,16 +35,6 @@ double cost_of(const std::vector<double>& fit) {
   double c = 0;
   for (double f : fit) c += (1 - f / 100) * (1 - f / 100);
   return c;
-}
-
-// Robust noise level of a measured signal from its second difference (the signal itself is
-// smooth at the sampling rate; the noise is not): sigma = MAD(d2) / 0.6745 / sqrt(6).
-double noise_sigma(const Eigen::VectorXd& y) {
-  if (y.size() < 5) return 0;
-  std::vector<double> d;
-  for (Eigen::Index k = 2; k < y.size(); ++k) d.push_back(std::abs(y[k] - 2 * y[k - 1] + y[k - 2]));
-  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
-  return d[d.size() / 2] / 0.6745 / std::sqrt(6.0);
 }
 
 Eigen::VectorXd values_of(const ModelFile& m) {
@@ -106,6 +99,178 @@ std::string fixed1(double x) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(1) << x;
   return os.str();
+}
+
+
+// Which parameter would have to vary over time, and when: the Salehpour–Johansson estimates of
+// sets/tv_bound.hpp on the calibrated model. Each free parameter is perturbed piecewise constant
+// over S segments; the sensitivity of the outputs to each segment's perturbation comes from
+// finite differences of the simulation (S x q runs). The biaffine regression is indexed by
+// segment: its "sample" k + 1 stacks m residual samples per output taken inside segment k (sample
+// 0 is an empty block: the model is nominal before the record), its columns are the segments,
+// so Xi is block lower triangular as in (4). The residual ball is the window norm with the
+// one-sample window: |residual| <= eps per (output, sub-sample) over all segments.
+std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const Recording& est, int substeps,
+                                                 const Eigen::VectorXd& p, const std::vector<int>& free,
+                                                 const std::vector<double>& scale, const Eigen::MatrixXd& R,
+                                                 const std::vector<double>& time, int segments, int threads) {
+  std::vector<VaryingParameter> out;
+  const Eigen::Index N = R.rows(), ny = R.cols();
+  const int q = static_cast<int>(free.size());
+  const int S = segments > 0 ? segments : static_cast<int>(std::clamp<Eigen::Index>(N / 500, 10, 30));
+  if (q == 0 || N < 4 * S) return out;
+  std::vector<Eigen::Index> a(static_cast<std::size_t>(S + 1));
+  for (int s = 0; s <= S; ++s) a[static_cast<std::size_t>(s)] = N * s / S;
+  Eigen::Index shortest = N;
+  for (int s = 0; s < S; ++s) shortest = std::min(shortest, a[static_cast<std::size_t>(s + 1)] - a[static_cast<std::size_t>(s)]);
+  const Eigen::Index m = std::min<Eigen::Index>(shortest, 25);
+  // Feature j of segment s: the mean over the j-th of m equal parts of the segment (averaging
+  // keeps isolated spikes and noise from setting the l-inf fit).
+  auto part = [&](int s, Eigen::Index j) {
+    const Eigen::Index lo = a[static_cast<std::size_t>(s)], len = a[static_cast<std::size_t>(s + 1)] - lo;
+    return std::pair<Eigen::Index, Eigen::Index>(lo + len * j / m, lo + len * (j + 1) / m);
+  };
+  auto mean_over = [&](const Eigen::MatrixXd& x, Eigen::Index o, int s, Eigen::Index j) {
+    const auto [b0, b1] = part(s, j);
+    return x.col(o).segment(b0, b1 - b0).mean();
+  };
+  const Eigen::Index l = ny * m;  // "outputs" of the regression: (output, sub-sample) pairs
+  Eigen::VectorXd sigma(ny);
+  for (Eigen::Index o = 0; o < ny; ++o) {
+    const double rms = std::sqrt(R.col(o).squaredNorm() / static_cast<double>(N));
+    sigma[o] = rms > 0 ? rms : 1.0;
+  }
+  Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(S + 1, l);
+  for (int s = 0; s < S; ++s)
+    for (Eigen::Index o = 0; o < ny; ++o)
+      for (Eigen::Index j = 0; j < m; ++j) Y(s + 1, o * m + j) = mean_over(R, o, s, j) / sigma[o];
+
+  // Sensitivities: column (i, s) holds d(features)/d(pi_i over segment s), pi in units of scale_i.
+  std::vector<Eigen::MatrixXd> xi(static_cast<std::size_t>(q), Eigen::MatrixXd::Zero((S + 1) * l, S));
+  Eigen::MatrixXd y0;
+  {
+    Simulator sim(model, est, {substeps});
+    if (!sim.simulate_outputs(p, y0)) return out;
+  }
+  std::atomic<int> next{0};
+  std::atomic<bool> failed{false};
+  auto worker = [&] {
+    Simulator sim(model, est, {substeps});
+    Eigen::MatrixXd sched(N, p.size()), y1;
+    for (int job; (job = next++) < q * S;) {
+      const int i = job / S, s = job % S;
+      const double h = 1e-2 * scale[static_cast<std::size_t>(i)];
+      sched = p.transpose().replicate(N, 1);
+      sched.col(free[static_cast<std::size_t>(i)]).segment(a[static_cast<std::size_t>(s)],
+                                                           a[static_cast<std::size_t>(s + 1)] - a[static_cast<std::size_t>(s)])
+          .array() += h;
+      if (!sim.simulate_outputs_scheduled(sched, y1)) {
+        failed = true;
+        continue;
+      }
+      y1 -= y0;
+      for (int k = s; k < S; ++k)  // causal: segment s acts on segments s, s + 1, ...
+        for (Eigen::Index o = 0; o < ny; ++o)
+          for (Eigen::Index j = 0; j < m; ++j)
+            xi[static_cast<std::size_t>(i)]((k + 1) * l + o * m + j, s) =
+                mean_over(y1, o, k, j) / h * scale[static_cast<std::size_t>(i)] / sigma[o];
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int k = 0; k < std::max(1, threads); ++k) pool.emplace_back(worker);
+    for (auto& th : pool) th.join();
+  }
+  if (failed) return out;
+
+  const Eigen::VectorXd offset = stack_samples(Y);
+  const double total = std::max(offset.squaredNorm(), 1e-300);
+  // eps weights: the fit dominates the objective (10 x the perturbation terms when nothing is
+  // explained), so the estimate is the smallest perturbation that fits about as well as any can.
+  Eigen::VectorXd h(l);
+  for (Eigen::Index o = 0; o < ny; ++o) {
+    const double peak = std::max(Y.middleCols(o * m, m).cwiseAbs().maxCoeff(), 1e-12);
+    h.segment(o * m, m).setConstant(10.0 / (static_cast<double>(l) * peak));
+  }
+  const double eps0 = std::max(h.dot(Y.cwiseAbs().colwise().maxCoeff().transpose()), 1e-300);
+  for (int i = 0; i < q; ++i) {
+    const double sc = scale[static_cast<std::size_t>(i)];
+    TvBoundData data;
+    data.regression.zeta = Eigen::MatrixXd::Zero(S + 1, 1);
+    data.regression.upsilon = Eigen::VectorXd::Zero((S + 1) * l);
+    data.regression.xi = xi[static_cast<std::size_t>(i)];
+    data.y = Y;
+    data.windows = {WindowNorm::pulse(1, 1.0)};
+    LinfBoundOptions lo;
+    lo.h = h;
+    lo.initial_difference = false;  // the calibrated value may be off from the start
+    TvBoundResult lin;
+    try {
+      lin = linf_bound(data, lo);
+    } catch (const std::exception&) {
+      continue;  // an estimate that cannot be computed is not reported
+    }
+    VaryingParameter vp;
+    vp.name = model.parameters[static_cast<std::size_t>(free[static_cast<std::size_t>(i)])].name;
+    vp.value = p[free[static_cast<std::size_t>(i)]];
+    vp.bound = sc * lin.bound[0];
+    Eigen::VectorXd pi = lin.pi.col(0);
+    vp.method = "linf_bound";
+    const double mu = std::max(0.1 * lin.bound[0], 1e-9);
+    if (lin.bound[0] > 0) {
+      // The sparse "when": fewest jumps above 10 % of the l-inf peak that keep the residual inside
+      // the l-inf eps widened by 10 %, warm-started from the l-inf trajectory.
+      SparseBoundOptions so;
+      so.mu = Eigen::VectorXd::Constant(1, mu);
+      so.max_abs = Eigen::VectorXd::Constant(1, 2 * lin.bound[0] + mu);
+      so.epsilon = lin.epsilon * 1.1 + Eigen::VectorXd::Constant(l, 1e-9);
+      so.initial_difference = false;
+      so.milp = MilpOptions{1.0, 1e-4, false};
+      so.start = lin.pi;
+      try {
+        const TvBoundResult sp = sparse_bound(data, so);
+        pi = sp.pi.col(0);
+        vp.method = "sparse_bound";
+      } catch (const std::exception&) {
+      }
+    }
+    // Explained: the share of the weighted residual bound h^T eps (what (8) minimises, eps_j the
+    // largest |feature j| over the segments) that the trajectory removes; and of the squared residual.
+    const Eigen::VectorXd rest = offset - xi[static_cast<std::size_t>(i)] * pi;
+    const Eigen::MatrixXd rest_m = unstack_samples(rest, static_cast<int>(l));
+    vp.explained = std::max(0.0, 1.0 - h.dot(rest_m.cwiseAbs().colwise().maxCoeff().transpose()) / eps0);
+    vp.explained_squared = std::max(0.0, 1.0 - rest.squaredNorm() / total);
+    vp.lo = vp.hi = vp.value;
+    for (int s = 0; s < S; ++s) {
+      const double v = vp.value + sc * pi[s];
+      vp.lo = std::min(vp.lo, v);
+      vp.hi = std::max(vp.hi, v);
+      vp.trajectory.push_back({time[static_cast<std::size_t>(a[static_cast<std::size_t>(s)])],
+                               time[static_cast<std::size_t>(a[static_cast<std::size_t>(s + 1)] - 1)], v});
+    }
+    // Jumps above mu; neighbouring jumps of the same sign are one step, whose window runs from the
+    // start of the segment before the first jump to the end of the last (a step inside segment j
+    // shows as jumps at j and/or j + 1). Steps are ranked by their total size.
+    std::vector<std::pair<double, std::pair<int, int>>> events;  // (signed size, (first, last))
+    for (int s = 1; s < S; ++s) {
+      const double dlt = pi[s] - pi[s - 1];
+      if (std::abs(dlt) <= mu * (1 + 1e-6)) continue;
+      vp.jumps.emplace_back(time[static_cast<std::size_t>(a[static_cast<std::size_t>(s)])], sc * dlt);
+      if (!events.empty() && events.back().second.second == s - 1 && (events.back().first > 0) == (dlt > 0)) {
+        events.back().first += dlt;
+        events.back().second.second = s;
+      } else {
+        events.push_back({dlt, {s, s}});
+      }
+    }
+    std::sort(events.begin(), events.end(), [](const auto& x, const auto& y) { return std::abs(x.first) > std::abs(y.first); });
+    for (std::size_t e = 0; e < std::min<std::size_t>(3, events.size()); ++e)
+      vp.when.emplace_back(time[static_cast<std::size_t>(a[static_cast<std::size_t>(events[e].second.first - 1)])],
+                           time[static_cast<std::size_t>(a[static_cast<std::size_t>(events[e].second.second + 1)] - 1)]);
+    out.push_back(vp);
+  }
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.explained > y.explained; });
+  return out;
 }
 
 }  // namespace
@@ -257,38 +422,10 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
       std::sort(ws.begin(), ws.end(), [](const auto& a, const auto& b) { return a.start < b.start; });
       for (auto& x : ws) d.windows.push_back(x);
     }
-    // Which parameter would have to vary, and when: segment-wise least squares of one parameter.
-    const int segments = 20;
-    Eigen::VectorXd rn(N * ny);
-    for (Eigen::Index j = 0; j < ny; ++j) rn.segment(j * N, N) = R.col(j) / norm[static_cast<std::size_t>(j)];
-    for (std::size_t i = 0; i < free0.size(); ++i) {
-      VaryingParameter vp;
-      vp.name = d.free_nominal[i];
-      vp.value = cal.parameters[free0[i]];
-      vp.lo = vp.hi = vp.value;
-      double explained = 0;
-      std::vector<std::pair<double, std::pair<double, double>>> changes;
-      for (int s = 0; s < segments; ++s) {
-        const Eigen::Index a = N * s / segments, b = N * (s + 1) / segments;
-        double num = 0, den = 0;
-        for (Eigen::Index j = 0; j < ny; ++j) {
-          const auto Jc = J.col(static_cast<Eigen::Index>(i)).segment(j * N + a, b - a) / norm[static_cast<std::size_t>(j)];
-          num += Jc.dot(rn.segment(j * N + a, b - a));
-          den += Jc.squaredNorm();
-        }
-        if (den <= 0) continue;
-        const double delta = num / den;
-        explained += num * num / den;
-        vp.lo = std::min(vp.lo, vp.value + delta);
-        vp.hi = std::max(vp.hi, vp.value + delta);
-        changes.push_back({std::abs(delta), {exact.time()[static_cast<std::size_t>(a)], exact.time()[static_cast<std::size_t>(b - 1)]}});
-      }
-      vp.explained = explained / std::max(rn.squaredNorm(), 1e-300);
-      std::sort(changes.begin(), changes.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-      for (std::size_t c = 0; c < std::min<std::size_t>(3, changes.size()); ++c) vp.when.push_back(changes[c].second);
-      d.varying.push_back(vp);
-    }
-    std::sort(d.varying.begin(), d.varying.end(), [](const auto& a, const auto& b) { return a.explained > b.explained; });
+    // Which parameter would have to vary over time, and when (Salehpour–Johansson, issue 7).
+    say("time-varying parameter estimates (linf_bound, sparse_bound)");
+    d.varying = varying_parameters(d.nominal, est, opt.screening_substeps, cal.parameters, free0, sc, R, exact.time(),
+                                   opt.varying_segments, opt.threads);
   }
   {
     // Operating regions where the residual concentrates.
@@ -655,6 +792,18 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
     }
     if (!have_pui) d.bound_note += "; the linearised strips were found inconsistent, no PUI";
     if (have_pui) d.bound_note += pr.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
+    // Equation-error PUIs where the effect's equation allows them (linear parameters, measured or
+    // differentiable states): much less sensitive to what the model leaves out at high frequency.
+    std::map<std::string, EquationErrorResult> ee_results;
+    for (const auto& c : chosen_candidates) {
+      if (ee_results.count(c.equation)) continue;
+      try {
+        ee_results[c.equation] = equation_error_pui(current, est, c.equation);
+      } catch (const std::exception& e) {
+        ee_results[c.equation].note = std::string("equation-error PUI failed: ") + e.what();
+      }
+      d.bound_note += "; " + ee_results[c.equation].note;
+    }
     const double dof = std::max<double>(1.0, static_cast<double>(rw.size() - Jw.cols()));
     const double s2 = rw.squaredNorm() / dof;
     Eigen::MatrixXd cov = (Jw.transpose() * Jw).completeOrthogonalDecomposition().pseudoInverse() * s2;
@@ -669,8 +818,22 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
           // The parameter's own bounds (min/max) hold too, so the interval is cut to them.
           const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
           const Interval theta = Interval(ep.estimate) + pr.box[ii] * o.scale[i];  // outward rounded
-          ep.lo = std::max(have_pui ? theta.lower() : -inf, mp.min);
-          ep.hi = std::min(have_pui ? theta.upper() : inf, mp.max);
+          ep.lo = ep.oe_lo = std::max(have_pui ? theta.lower() : -inf, mp.min);
+          ep.hi = ep.oe_hi = std::min(have_pui ? theta.upper() : inf, mp.max);
+          const auto ee = ee_results.find(chosen_candidates[k].equation);
+          if (ee != ee_results.end() && ee->second.built)
+            for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
+              if (ee->second.parameters[static_cast<std::size_t>(c)] == pn) {
+                ep.has_ee = true;
+                ep.ee_lo = std::max(ee->second.box[c].lower(), mp.min);
+                ep.ee_hi = std::min(ee->second.box[c].upper(), mp.max);
+                // Each set holds the truth under its own bound, so under both the truth lies in
+                // their intersection. Disjoint sets mean one bound is violated: then the hull.
+                const bool meet = ep.ee_lo <= ep.oe_hi && ep.oe_lo <= ep.ee_hi;
+                ep.lo = meet ? std::max(ep.ee_lo, ep.oe_lo) : std::min(ep.ee_lo, ep.oe_lo);
+                ep.hi = meet ? std::min(ep.ee_hi, ep.oe_hi) : std::max(ep.ee_hi, ep.oe_hi);
+                if (!meet) d.bound_note += "; the equation-error and output-error intervals of " + pn + " are disjoint (one bound is violated): their hull is reported";
+              }
           const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
           ep.stat_lo = ep.estimate - 1.96 * sd;
           ep.stat_hi = ep.estimate + 1.96 * sd;
@@ -749,7 +912,12 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
   for (const auto& v : d.varying) {
     J when = J::array();
     for (const auto& w : v.when) when.push_back({w.first, w.second});
-    varying.push_back({{"name", v.name}, {"value", v.value}, {"range", {v.lo, v.hi}}, {"explained", v.explained}, {"when", when}});
+    J traj = J::array();
+    for (const auto& sv : v.trajectory) traj.push_back({{"start", sv.start}, {"end", sv.end}, {"value", sv.value}});
+    J jumps = J::array();
+    for (const auto& jp : v.jumps) jumps.push_back({{"time", jp.first}, {"size", jp.second}});
+    varying.push_back({{"name", v.name}, {"value", v.value}, {"range", {v.lo, v.hi}}, {"explained", v.explained}, {"when", when},
+                       {"explained_squared", v.explained_squared}, {"bound", v.bound}, {"method", v.method}, {"jumps", jumps}, {"trajectory", traj}});
   }
   J bands = J::array();
   for (const auto& b : d.bands) bands.push_back({{"output", b.output}, {"band_hz", {b.lo_hz, b.hi_hz}}, {"peak_hz", b.peak_hz}});
@@ -765,7 +933,9 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
     J ps = J::object();
     for (const auto& p : e.parameters)
       ps[p.name] = {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
-                    {"statistical_95", {num(p.stat_lo), num(p.stat_hi)}}};
+                    {"statistical_95", {num(p.stat_lo), num(p.stat_hi)}},
+                    {"interval_output_error", {num(p.oe_lo), num(p.oe_hi)}},
+                    {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)}};
     effects.push_back({{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence}});
   }
   j["effects"] = effects;
@@ -809,7 +979,13 @@ std::string diagnosis_text(const Diagnosis& d) {
   if (!d.varying.empty()) {
     const auto& v = d.varying.front();
     o << "  parameter that would have to vary most: " << v.name << " between " << fmt(v.lo, 4) << " and " << fmt(v.hi, 4)
-      << " (explains " << fixed1(100 * v.explained) << " % of the residual)\n";
+      << " (removes " << fixed1(100 * v.explained) << " % of the residual's window-norm bound";
+    if (!v.when.empty()) {
+      o << "; it jumps in t = ";
+      for (std::size_t w = 0; w < v.when.size(); ++w) o << (w ? ", " : "") << fmt(v.when[w].first, 4) << " .. " << fmt(v.when[w].second, 4);
+      o << " s";
+    }
+    o << ")\n";
   }
   o << "Verdict: " << d.verdict << "\n";
   for (std::size_t k = 0; k < d.effects.size(); ++k) {
@@ -817,7 +993,10 @@ std::string diagnosis_text(const Diagnosis& d) {
     o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
     for (const auto& p : e.parameters)
       o << "     " << p.name << " = " << fmt(p.estimate, 5) << ", guaranteed interval [" << fmt(p.lo, 5) << ", "
-        << fmt(p.hi, 5) << "], statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
+        << fmt(p.hi, 5) << "]"
+        << (p.has_ee ? " (equation error [" + fmt(p.ee_lo, 5) + ", " + fmt(p.ee_hi, 5) + "], output error [" + fmt(p.oe_lo, 5) + ", " + fmt(p.oe_hi, 5) + "])"
+                     : " (output error)")
+        << ", statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
     o << "     evidence: " << e.evidence << "\n";
   }
   if (!d.effects.empty()) {

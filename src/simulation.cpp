@@ -2,6 +2,7 @@
 
 #include <muParser.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <map>
@@ -17,6 +18,14 @@ Eigen::VectorXd SimulationResult::series(const std::string& name) const {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return values.col(static_cast<Eigen::Index>(i));
   throw InputError("no recorded signal \"" + name + "\"");
+}
+
+double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y) {
+  if (y.size() < 5) return 0;
+  std::vector<double> d;
+  for (Eigen::Index k = 2; k < y.size(); ++k) d.push_back(std::abs(y[k] - 2 * y[k - 1] + y[k - 2]));
+  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+  return d[d.size() / 2] / 0.6745 / std::sqrt(6.0);
 }
 
 double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat) {
@@ -251,7 +260,10 @@ struct Run {
 
 }  // namespace
 
-static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixXd* outputs, Eigen::MatrixXd* values) {
+// `schedule` (optional, samples x parameters): the parameter values held over each sample
+// interval, replacing `params` from that sample on.
+static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixXd* outputs, Eigen::MatrixXd* values,
+               const Eigen::MatrixXd* schedule = nullptr) {
   Run r;
   const int N = static_cast<int>(I.time.size());
   const std::size_t ns = I.state_slots.size();
@@ -266,6 +278,9 @@ static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixX
   for (int k = 0; k < N; ++k) {
     const double tk = I.time[static_cast<std::size_t>(k)];
     I.slots[static_cast<std::size_t>(I.t_slot)] = tk;
+    if (schedule)
+      for (std::size_t i = 0; i < I.param_slots.size(); ++i)
+        I.slots[static_cast<std::size_t>(I.param_slots[i])] = (*schedule)(k, static_cast<Eigen::Index>(i));
     for (std::size_t i = 0; i < I.input_slots.size(); ++i)
       I.slots[static_cast<std::size_t>(I.input_slots[i])] = I.input_data[i][static_cast<std::size_t>(k)];
     for (std::size_t i = 0; i < ns; ++i) I.slots[static_cast<std::size_t>(I.state_slots[i])] = x[i];
@@ -351,6 +366,18 @@ SimulationResult Simulator::simulate(const Eigen::VectorXd& parameters) const {
 bool Simulator::simulate_outputs(const Eigen::VectorXd& parameters, Eigen::MatrixXd& outputs) const {
   try {
     return run(*impl_, parameters, &outputs, nullptr).ok;
+  } catch (const mu::Parser::exception_type&) {
+    return false;
+  }
+}
+
+bool Simulator::simulate_outputs_scheduled(const Eigen::MatrixXd& schedule, Eigen::MatrixXd& outputs) const {
+  if (schedule.rows() != samples() || schedule.cols() != static_cast<Eigen::Index>(impl_->param_slots.size()))
+    throw InputError("parameter schedule is " + std::to_string(schedule.rows()) + " x " + std::to_string(schedule.cols()) +
+                     ", expected samples x parameters = " + std::to_string(samples()) + " x " +
+                     std::to_string(impl_->param_slots.size()));
+  try {
+    return run(*impl_, schedule.row(0).transpose(), &outputs, nullptr, &schedule).ok;
   } catch (const mu::Parser::exception_type&) {
     return false;
   }

@@ -106,14 +106,16 @@ SyntheticPlant synthetic_plant(const std::string& name) {
   const std::string base = is_tank ? "kin*u - a*h" : "K*u - k*x - c*v";
   const std::string den = is_tank ? "A" : "m";
   auto force = [&](const std::string& extra) { acc = "(" + base + " - " + extra + ")/" + den; };
-  if (name == "coulomb_friction") force("0.3*sign(v)");
+  if (name == "coulomb_friction") force("0.3*sign(v)"), p.true_values = {{"Fc", 0.3}};
+  if (name == "viscous_friction") p.true_values = {{"Fv", 0.8}};
   if (name == "stribeck_friction") force("sign(v)*(0.15 + 0.35*exp(-(v/0.05)^2))");
-  if (name == "quadratic_drag") force("1.5*v*abs(v)");
-  if (name == "constant_offset") force("0.3");
-  if (name == "cubic_stiffness") force("12*x^3");
+  if (name == "quadratic_drag") force("1.5*v*abs(v)"), p.true_values = {{"Cd", 1.5}};
+  if (name == "constant_offset") force("0.3"), p.true_values = {{"offset", 0.3}};
+  if (name == "cubic_stiffness") force("12*x^3"), p.true_values = {{"k3", 12.0}};
   if (name == "sqrt_outflow") {
     truth.parameters.push_back(par("b", 0.6));
     acc = "(kin*u - b*sqrt(max(h, 0)))/A";
+    p.true_values = {{"a_h", 0.6}};
     set("a", 0.0);
   }
   if (name == "backlash") {

@@ -6,8 +6,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
+#include <sstream>
 
 #include "sets/diagnosis.hpp"
+#include "sets/equation_error.hpp"
 #include "sets/error.hpp"
 #include "sets/model_file.hpp"
 #include "sets/recording.hpp"
@@ -156,6 +159,97 @@ TEST(Diagnosis, SyntheticCoulombPlantIsNamedAndCleanPlantGetsNothing) {
   }
 }
 
+// A plant whose stiffness steps from 4 to 7 at t = 23.7 s, diagnosed from the constant-parameter
+// model: the time-varying estimates must name k and a window holding the step.
+TEST(Diagnosis, VaryingParameterNamesTheSteppingParameterAndWhen) {
+  const char* nominal = R"({"name": "axis", "time": "t", "inputs": {"u": "u"},
+    "parameters": {"m": 1.2, "k": 3.5, "c": 1.0}, "states": {"x": 0.0, "v": 0.0},
+    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
+  ModelFile truth = parse_model(nominal);
+  *truth.derivative("v") = "(u - (4 + 3*(t >= 23.7))*x - 0.8*v)/1.0";
+  const int n = 4000;
+  const double Ts = 0.01;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> level(-2, 2), hold(0.5, 3.0);
+  std::vector<double> t(n), u(n);
+  double next = 0, value = 0;
+  for (int k = 0; k < n; ++k) {
+    t[static_cast<std::size_t>(k)] = k * Ts;
+    if (k * Ts >= next) value = level(rng), next = k * Ts + hold(rng);
+    u[static_cast<std::size_t>(k)] = value;
+  }
+  Recording r;
+  r.add("t", t);
+  r.add("u", u);
+  r.add("x_meas", std::vector<double>(n, 0.0));
+  Simulator sim(truth, r);
+  const Eigen::VectorXd x = sim.simulate(sim.parameter_values()).outputs.col(0);
+  const double sd = std::sqrt((x.array() - x.mean()).square().mean());
+  std::normal_distribution<double> noise(0.0, 0.01 * sd);
+  std::vector<double> meas(n);
+  for (int k = 0; k < n; ++k) meas[static_cast<std::size_t>(k)] = x[k] + noise(rng);
+  r.add("x_meas", meas);
+
+  DiagnosisOptions opt;
+  opt.max_effects = 0;  // only the mismatch location is tested here
+  const Diagnosis d = diagnose(parse_model(nominal), r, nullptr, opt);
+  ASSERT_EQ(d.varying.size(), 3u);
+  const VaryingParameter& v = d.varying.front();
+  std::ostringstream trace;  // the estimates, shown when an expectation fails
+  for (const auto& p : d.varying) {
+    trace << p.name << " (" << p.method << ", explained " << p.explained << ", squared " << p.explained_squared << "):";
+    for (const auto& s : p.trajectory) trace << " " << s.value;
+    trace << "; when:";
+    for (const auto& w : p.when) trace << " [" << w.first << ", " << w.second << "]";
+    trace << "\n";
+  }
+  if (std::getenv("SETS_VERBOSE")) std::cout << trace.str();
+  SCOPED_TRACE(trace.str());
+  EXPECT_EQ(v.name, "k");
+  ASSERT_FALSE(v.when.empty());
+  EXPECT_LE(v.when.front().first, 23.7);
+  EXPECT_GE(v.when.front().second, 23.7);
+  // The estimated trajectory is lower before the step than after it.
+  ASSERT_FALSE(v.trajectory.empty());
+  EXPECT_LT(v.trajectory.front().value, v.trajectory.back().value);
+  EXPECT_GT(v.explained, d.varying[1].explained);
+}
+
+// Equation-error PUIs of the Coulomb plant's force balance, measured at values a little off the
+// truth (as an estimate would be): every true parameter must lie in its interval, and the
+// parameters that enter nonlinearly or through prev() are refused with a reason.
+TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
+  const SyntheticPlant p = synthetic_plant("coulomb_friction");
+  ModelFile m = p.nominal;
+  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
+  ModelParameter fc;
+  fc.name = "Fc";
+  m.parameters.push_back(fc);
+  const std::vector<std::pair<std::string, double>> truth{{"m", 1.0}, {"k", 4.0}, {"c", 0.8}, {"Fc", 0.3}};
+  const std::vector<double> off{1.03, 3.9, 0.84, 0.28};
+  for (std::size_t i = 0; i < truth.size(); ++i) m.parameter(truth[i].first)->value = off[i];
+  const EquationErrorResult r = equation_error_pui(m, p.estimation, "v");
+  ASSERT_TRUE(r.built) << r.note;
+  EXPECT_EQ(r.order, 2);
+  ASSERT_EQ(r.parameters.size(), 4u);
+  EXPECT_EQ(r.parameters.front(), "m");  // the inertia: m * v' is affine in k, c, Fc
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    double tv = 0;
+    for (const auto& [n, v] : truth)
+      if (n == r.parameters[i]) tv = v;
+    EXPECT_LE(r.box[static_cast<Eigen::Index>(i)].lower(), tv) << r.parameters[i];
+    EXPECT_GE(r.box[static_cast<Eigen::Index>(i)].upper(), tv) << r.parameters[i];
+  }
+  ModelFile nonlinear = m;
+  *nonlinear.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v)*exp(-(v/m)^2))/m";
+  EXPECT_FALSE(equation_error_pui(nonlinear, p.estimation, "v").built);
+  ModelFile delayed = m;
+  *delayed.derivative("v") = "(K*prev(u, 3) - k*x - c*v)/m";
+  const EquationErrorResult rd = equation_error_pui(delayed, p.estimation, "v");
+  EXPECT_FALSE(rd.built);
+  EXPECT_NE(rd.note.find("prev"), std::string::npos) << rd.note;
+}
+
 TEST(Diagnosis, EmpsNamesCoulombFrictionAndOffset) {
   const auto model = test::shared_data("emps/nominal.json");
   const auto est = test::shared_data("emps/estimation.csv");
@@ -175,6 +269,12 @@ TEST(Diagnosis, EmpsNamesCoulombFrictionAndOffset) {
   EXPECT_LE(off.lo, -3.2);
   EXPECT_GE(off.hi, -3.2);
   EXPECT_GE(d.fit_augmented_validation.at(1), 90.0);  // u
+  // The equation-error PUIs exist for both and are much narrower than the output-error ones
+  // (+-40 N before they were built).
+  EXPECT_TRUE(fc.has_ee);
+  EXPECT_TRUE(off.has_ee);
+  EXPECT_LT(fc.hi - fc.lo, 25.0);
+  EXPECT_LT(off.hi - off.lo, 15.0);
 }
 
 TEST(Recording, MatFileHasTheSameRecordAsTheCsv) {

@@ -137,9 +137,10 @@ int main(int argc, char** argv) {
   try {
     if (suite) {
       // Every plant of the suite: true effect against the first effect named.
-      std::cout << "| plant | true effect | named (ranked) | right | nominal fit (val) | augmented fit (val) | s |\n"
-                   "| --- | --- | --- | --- | --- | --- | --- |\n";
-      int right = 0, total = 0, clean = 0, clean_ok = 0;
+      std::cout << "| plant | true effect | named (ranked) | right | nominal fit (val) | augmented fit (val) | s | true value: "
+                   "guaranteed interval (equation error, output error) |\n"
+                   "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      int right = 0, total = 0, clean = 0, clean_ok = 0, checked = 0, contained = 0;
       for (const auto& name : synthetic_plant_names()) {
         if (!plant.empty() && name != plant) continue;
         const SyntheticPlant p = synthetic_plant(name);
@@ -158,10 +159,28 @@ int main(int argc, char** argv) {
         if (p.true_effect == "none") ++clean, clean_ok += ok;
         char buf[256];
         std::snprintf(buf, sizeof buf, " | %.1f | %.1f | %.1f |", d.fit_nominal_validation.at(0), d.fit_augmented_validation.at(0), d.seconds);
-        std::cout << "| " << name << " | " << p.true_effect << " | " << named << " | " << (ok ? "yes" : "**no**") << buf << "\n" << std::flush;
+        // Does the reported guaranteed interval contain the true value?
+        std::string truth;
+        for (const auto& [pn, tv] : p.true_values)
+          for (const auto& e : d.effects)
+            for (const auto& ep : e.parameters)
+              if (ep.name == pn) {
+                const bool in = ep.lo <= tv && tv <= ep.hi;
+                ++checked;
+                contained += in;
+                char t[256];
+                char ee[96] = "none";
+                if (ep.has_ee) std::snprintf(ee, sizeof ee, "[%.4g, %.4g]%s", ep.ee_lo, ep.ee_hi, ep.ee_lo <= tv && tv <= ep.ee_hi ? "" : " **misses**");
+                std::snprintf(t, sizeof t, "%s = %g: [%.4g, %.4g] %s (EE %s, OE [%.4g, %.4g])", pn.c_str(), tv, ep.lo, ep.hi,
+                              in ? "contains" : "**misses**", ee, ep.oe_lo, ep.oe_hi);
+                truth += (truth.empty() ? "" : "; ") + std::string(t);
+              }
+        std::cout << "| " << name << " | " << p.true_effect << " | " << named << " | " << (ok ? "yes" : "**no**") << buf << " "
+                  << (truth.empty() ? "–" : truth) << " |\n" << std::flush;
       }
       std::cout << "\nNamed right (first effect = true effect): " << right << " of " << total << "; clean plants with no invented effect: "
-                << clean_ok << " of " << clean << "\n";
+                << clean_ok << " of " << clean << "; true effect values inside the guaranteed interval: " << contained << " of "
+                << checked << "\n";
       return 0;
     }
     ModelFile model;

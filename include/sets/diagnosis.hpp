@@ -25,6 +25,7 @@ struct DiagnosisOptions {
   double sparsity_tolerance = 1.25;  // a simpler hypothesis wins if its misfit is within this factor
   double noise_floor_factor = 1.5;   // stop when the misfit is below this x the noise's own misfit (0: never)
   int threads = 2;
+  int varying_segments = 0;          // segments of the time-varying estimates; 0: N/500 within [10, 30]
   std::function<void(const std::string&)> progress;  // one line per stage (optional)
 };
 
@@ -42,12 +43,27 @@ struct MismatchRegion {
   double sample_share = 0;     // share of the samples inside the region
 };
 
+/// One segment of an estimated parameter trajectory.
+struct SegmentValue {
+  double start = 0, end = 0;   // s
+  double value = 0;            // parameter value held over the segment
+};
+
+/// Which parameter would have to vary over time, and when (Salehpour–Johansson estimates on the
+/// calibrated model, the parameter perturbed piecewise constant over segments; see
+/// docs/methods/diagnosis.md). These are estimates, not guaranteed bounds.
 struct VaryingParameter {
   std::string name;
   double value = 0;            // calibrated constant value
-  double lo = 0, hi = 0;       // range the segment-wise values would need
-  double explained = 0;        // share of the squared residual a time-varying value explains
-  std::vector<std::pair<double, double>> when;  // time ranges with the largest changes
+  double lo = 0, hi = 0;       // range of the estimated trajectory
+  double explained = 0;        // share of the residual's window-norm bound (h^T eps of the l-inf
+                               // method) the trajectory removes
+  double explained_squared = 0;  // share of the squared residual it removes
+  std::vector<std::pair<double, double>> when;  // time windows holding the largest jumps
+  double bound = 0;            // rho-hat: largest |trajectory - value| (l-inf estimate), parameter units
+  std::vector<SegmentValue> trajectory;  // the estimate reported (sparse when it was solved)
+  std::vector<std::pair<double, double>> jumps;  // (time of the segment start, size), parameter units
+  std::string method;          // "sparse_bound" or "linf_bound"
 };
 
 struct FrequencyBand {
@@ -58,7 +74,12 @@ struct FrequencyBand {
 struct EffectParameter {
   std::string name;
   double estimate = 0;
-  double lo = 0, hi = 0;            // guaranteed PUI (linearised output error, stated bound); +-inf if unbounded
+  double lo = 0, hi = 0;            // guaranteed PUI under the stated bounds: the intersection of the
+                                    // output-error and equation-error PUIs (the output-error one alone
+                                    // when no equation-error PUI was built); +-inf if unbounded
+  double oe_lo = 0, oe_hi = 0;      // PUI of the output error linearised at the estimate
+  bool has_ee = false;              // an equation-error PUI was built (sets/equation_error.hpp)
+  double ee_lo = 0, ee_hi = 0;
   double stat_lo = 0, stat_hi = 0;  // 95 % statistical interval (white-noise assumption)
 };
 

@@ -57,6 +57,10 @@ class Simulator {
   SimulationResult simulate(const Eigen::VectorXd& parameters) const;
   /// Outputs only (cheaper), samples x outputs. Returns false instead of throwing on blow-up.
   bool simulate_outputs(const Eigen::VectorXd& parameters, Eigen::MatrixXd& outputs) const;
+  /// Outputs with time-varying parameters: row k of `schedule` (samples x parameters) holds the
+  /// values used from sample k to sample k+1 (and by the sampled signals at k). Returns false on
+  /// blow-up; InputError if the schedule has the wrong size.
+  bool simulate_outputs_scheduled(const Eigen::MatrixXd& schedule, Eigen::MatrixXd& outputs) const;
 
   struct Impl;  // muparser state (kept out of this header)
 
@@ -66,6 +70,10 @@ class Simulator {
 
 /// Checks a model against a recording without simulating (same errors as the constructor).
 void check_model(const ModelFile& model, const Recording& data);
+
+/// Robust noise level of a measured signal from its second difference (the signal itself is
+/// smooth at the sampling rate; the noise is not): sigma = MAD(d2) / 0.6745 / sqrt(6).
+double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y);
 
 /// fit = 100 (1 - ||y - yhat|| / ||y - mean y||) in percent.
 double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat);

@@ -17,6 +17,9 @@ struct SyntheticPlant {
   ModelFile nominal;        // what the engineer wrote (without the effect)
   ModelFile truth;          // what generated the data (noise-free)
   Recording estimation, validation;
+  /// True values of the effect's parameters under the catalogue's names (for the effects whose
+  /// parameters are plain numbers in the truth), e.g. {"Fc", 0.3}.
+  std::vector<std::pair<std::string, double>> true_values;
 };
 
 /// Names of every plant in the suite (one per catalogue entry, then the clean plants).
