@@ -99,16 +99,24 @@ TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& option
   const Eigen::VectorXd G = diagonal_or_ones(options.G, q, "linf_bound: G");
   const WindowNormBall ball = data.ball();
   const Eigen::VectorXd offset = stack_samples(data.y) - data.regression.upsilon;
+  const bool fixed_eps = options.epsilon.size() > 0;
+  if (fixed_eps) {
+    if (options.epsilon.size() != l || !options.epsilon.allFinite() || (options.epsilon.array() < 0).any())
+      throw InputError("linf_bound: epsilon needs one finite non-negative window-norm bound per output (" +
+                       std::to_string(l) + "), got " + std::to_string(options.epsilon.size()) + " entries");
+    if (options.h.size() > 0)
+      throw InputError("linf_bound: give either epsilon (a known noise bound) or its weight h, not both");
+  }
   Eigen::VectorXd h = options.h;
-  if (h.size() == 0) {
+  if (!fixed_eps && h.size() == 0) {
     h = ball.norms(offset);
     for (Eigen::Index j = 0; j < h.size(); ++j) {
       if (h[j] == 0)
         throw InputError("linf_bound: output " + std::to_string(j) +
-                         " equals the nominal model exactly, so h = 1/||y_m - C zeta||_w is undefined; give h");
+                         " equals the nominal model exactly, so h = 1/||y_m - C zeta||_w is undefined; give h or epsilon");
       h[j] = 1.0 / h[j];
     }
-  } else if (h.size() != l || !h.allFinite() || (h.array() < 0).any()) {
+  } else if (!fixed_eps && (h.size() != l || !h.allFinite() || (h.array() < 0).any())) {
     throw InputError("linf_bound: h needs one finite non-negative weight per output");
   }
 
@@ -116,19 +124,22 @@ TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& option
   const int tF = lp.add_variables(1, 0, inf), tG = lp.add_variables(1, 0, inf);
   add_peak_rows(lp, N, q, F, tF, false, options.initial_difference);
   add_peak_rows(lp, N, q, G, tG, true, options.initial_difference);
-  const auto blk = ball.add_to(lp, offset, data.regression.xi, 0);
+  const auto blk = ball.add_to(lp, offset, data.regression.xi, 0, options.epsilon);
   Eigen::VectorXd c = Eigen::VectorXd::Zero(lp.num_variables());
   c[tF] = 1;
   c[tG] = 1;
-  c.segment(blk.first_eps, l) = h;
+  if (!fixed_eps) c.segment(blk.first_eps, l) = h;
   lp.set_objective(c, Sense::minimize);
   const LpSolution s = lp.solve();
+  if (fixed_eps && s.status == LpStatus::infeasible)
+    throw EmptySetError("linf_bound: no perturbation trajectory explains the data with the noise's window norm "
+                        "within the given epsilon (the data falsify the model and epsilon)");
   if (s.status != LpStatus::optimal)
     throw NumericalError(std::string("linf_bound: the LP is ") + to_string(s.status) + " (it is feasible by construction)");
 
   TvBoundResult r;
   r.objective = s.objective;
-  r.epsilon = s.x.segment(blk.first_eps, l);
+  r.epsilon = fixed_eps ? options.epsilon : Eigen::VectorXd(s.x.segment(blk.first_eps, l));
   Eigen::VectorXd mu = options.mu;
   const Eigen::VectorXd pi = s.x.head(static_cast<Eigen::Index>(N) * q);
   if (mu.size() == 0) mu = 1e-3 * unstack_samples(pi, q).cwiseAbs().colwise().maxCoeff().transpose();

@@ -58,6 +58,10 @@ struct LinfBoundOptions {
   Eigen::VectorXd G;  // diagonal of G (size q); empty = ones
   /// Weight of eps (size l); empty = 1 / ||y_m - C zeta||_w per output, as in the paper.
   Eigen::VectorXd h;
+  /// A known window-norm bound of the noise (size l, >= 0), e.g. from another method (the paper,
+  /// end of Section VI). Empty = eps is a variable of (8), weighted by h (the paper's form). When
+  /// given, (8) is solved with eps fixed and without the h^T eps term (h must then be empty).
+  Eigen::VectorXd epsilon;
   /// Delta pi(0) = pi(0) - pi(-1) with pi(-1) = 0 (the model is nominal before the data) when
   /// true; Delta pi(0) is left out when false.
   bool initial_difference = true;
@@ -66,8 +70,9 @@ struct LinfBoundOptions {
 };
 
 /// Equation (8): min ||(I (x) F) Pi||_inf + ||(I (x) G) Delta Pi||_inf + h^T eps
-/// s.t. W |Y_m - Upsilon - Xi Pi| <= 1 (x) eps, as one LP. Throws InputError on bad input and
-/// NumericalError if GLPK fails.
+/// s.t. W |Y_m - Upsilon - Xi Pi| <= 1 (x) eps, as one LP (eps fixed and no h-term when
+/// options.epsilon is given). Throws InputError on bad input, EmptySetError if no perturbation
+/// explains the data with the given epsilon, and NumericalError if GLPK fails.
 TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& options = {});
 
 enum class SparseFormulation {
