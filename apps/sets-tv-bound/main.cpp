@@ -148,6 +148,11 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "linf, milp or both")->check(CLI::IsMember({"linf", "milp", "both"}));
   app.add_option("--table", table, "I, II, III or all")->check(CLI::IsMember({"I", "II", "III", "all"}));
   app.add_option("--time-limit", time_limit, "MILP time limit per case [s]")->check(CLI::PositiveNumber);
+  long node_limit = 0;
+  app.add_option("--node-limit", node_limit,
+                 "MILP branch-and-bound node limit per case (0 = none); unlike --time-limit the result "
+                 "does not depend on the machine's load, so runs are reproducible")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "noise seed");
   app.add_option("--json", json_path, "write the results as JSON to this file");
   app.add_option("--horizon", seconds, "simulated time [s] (N = horizon / 0.05)")->check(CLI::Range(1.0, 60.0));
@@ -190,7 +195,7 @@ int main(int argc, char** argv) {
 
   try {
     nlohmann::json out;
-    out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"mu_rel", mu_rel},
+    out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"node_limit", node_limit}, {"mu_rel", mu_rel},
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
                        {"scale", scale}, {"milp_eps", milp_eps},
                        {"plant", plant}, {"relinearise", relinearise}};
@@ -296,16 +301,16 @@ int main(int argc, char** argv) {
                                  data.regression.xi * sets::stack_samples(pi));
         so.formulation =
             formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
-        so.milp = {time_limit, gap, verbose};
+        so.milp = {time_limit, gap, verbose, node_limit};
         if (warm) so.start = linf.pi;
         const auto m = sets::sparse_bound(data, so);
         const Eigen::VectorXd rms = sets::rms_tracking_error(m.pi, pi);
         j["milp"] = {{"bound", vec(m.bound)}, {"rms_tracking", vec(rms)}, {"seconds", m.seconds}, {"gap", m.gap},
                      {"status", sets::to_string(m.status)}, {"objective", m.objective},
-                     {"best_bound", m.best_bound}, {"changes", m.changes.size()}};
+                     {"best_bound", m.best_bound}, {"changes", m.changes.size()}, {"nodes", m.nodes}};
         std::cout << "      milp  bound " << fmt(m.bound) << "  rms " << fmt(rms, 3) << "  jumps "
                   << m.changes.size() << "  obj " << m.objective << "  gap " << std::setprecision(3) << m.gap << "  " << std::fixed
-                  << std::setprecision(2) << m.seconds << " s (" << sets::to_string(m.status) << ")\n";
+                  << std::setprecision(2) << m.seconds << " s, " << m.nodes << " nodes (" << sets::to_string(m.status) << ")\n";
       }
       out["cases"].push_back(j);
       std::cout.flush();
