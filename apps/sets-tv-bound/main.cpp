@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "crane.hpp"
+#include "sets/exit_code.hpp"
 #include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/tv_bound.hpp"
@@ -316,15 +317,8 @@ int main(int argc, char** argv) {
       std::cout.flush();
     }
     if (!json_path.empty()) sets::write_file_atomically(json_path, out.dump(2) + "\n");
-  } catch (const sets::InputError& e) {
-    std::cerr << "sets-tv-bound: " << e.what() << '\n';
-    return 1;
-  } catch (const sets::NumericalError& e) {
-    std::cerr << "sets-tv-bound: numerical failure: " << e.what() << '\n';
-    return 3;
   } catch (const std::exception& e) {
-    std::cerr << "sets-tv-bound: " << e.what() << '\n';
-    return 1;
+    return sets::report_failure("sets-tv-bound", e);
   }
   return 0;
 }
