@@ -185,6 +185,13 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
   S.tail_terms = K;
   S.rows = R;
   S.beta1 = basis.beta1(priors.M, priors.rho);
+  S.basis = basis;
+  {  // sup|T'| <= sum_{k>=n} M rho^k (D0 + floor(k/m) H0 L'), floor(k/m) <= k/m, closed form.
+    const double r = priors.rho, rn = priors.M * std::pow(r, order);
+    S.tail_beta = rn * (basis.front_derivative_bound() / (1 - r) +
+                        basis.hinf_bound() * basis.allpass_derivative_bound() / basis.block() *
+                            (order / (1 - r) + r / ((1 - r) * (1 - r))));
+  }
 
   const int n = order;
   const Eigen::MatrixXd X = basis.responses(u, n + K);
@@ -214,6 +221,8 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
   const double rem = priors.M * std::pow(priors.rho, n + K) / (1 - priors.rho);  // sum_{k>=n+K} M rho^k
   Eigen::VectorXd tailcoef(K);
   for (int k = 0; k < K; ++k) tailcoef[k] = priors.M * std::pow(priors.rho, n + k);
+  S.tail_coefficients = tailcoef;
+  S.tail_remainder = rem * H0;
   Eigen::VectorXd ic(R);
   for (int i = 0; i < R; ++i) ic[i] = eic(t0 + i + 1);
   S.terms.resize(nw);
@@ -257,6 +266,14 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
     for (int l = 0; l < n; ++l)
       if (!std::isfinite(sup.box[l].lower()) || !std::isfinite(sup.box[l].upper()))
         throw NumericalError("bounded noise: parameter " + num(l) + " is unbounded (input not exciting enough)");
+    // The PUI box X contains the FPS, hence theta0: centre and radius for b_data (rounded up).
+    S.theta_ref.resize(n);
+    S.theta_radius.resize(n);
+    for (int l = 0; l < n; ++l) {
+      const double lo = sup.box[l].lower(), hi = sup.box[l].upper(), c = 0.5 * (lo + hi);
+      S.theta_ref[l] = c;
+      S.theta_radius[l] = std::nextafter(std::max(hi - c, c - lo) * (1 + 1e-15), inf);
+    }
     auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
       const double v = sup.maxima[static_cast<std::size_t>(k)];
       if (!std::isfinite(v)) throw NumericalError("bounded noise: could not certify an LP bound");
@@ -298,6 +315,23 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
   };
   const double level = opt.simultaneous ? 1 - (1 - opt.alpha) / nw : opt.alpha;
   S.level = level;
+  {  // Coefficient box for b_data: theta_hat_k - theta0_k = c_k^T (tail + ic + v), c_k = Z S^-T e_k,
+     // bounded like a frequency row; Bonferroni over k at total failure share * (1 - alpha).
+    if (!(opt.coefficient_share > 0)) throw InputError("coefficient_share must be > 0");
+    const double fail = opt.coefficient_share * (1 - opt.alpha);
+    S.coefficient_level = std::max(0.0, 1 - fail);
+    const boost::math::normal normal01;
+    const double zt = boost::math::quantile(normal01, 1 - fail / (2 * n));
+    const Eigen::MatrixXd Ct = Z * Smat.transpose().colPivHouseholderQr().solve(Eigen::MatrixXd::Identity(n, n));
+    const Eigen::MatrixXd XtCt = Xt.transpose() * Ct;
+    S.theta_ref = S.theta;
+    S.theta_radius.resize(n);
+    for (int k = 0; k < n; ++k) {
+      const auto c = Ct.col(k);
+      S.theta_radius[k] = zt * std::sqrt(std::max(0.0, quad(c, c))) + tailcoef.dot(XtCt.col(k).cwiseAbs()) +
+                          rem * c.norm() * H0 * unorm + c.cwiseAbs().dot(ic);
+    }
+  }
   const boost::math::normal normal;
   const double zq = boost::math::quantile(normal, 1 - (1 - level) / 4);  // two-sided, Re and Im
   const double chi2 = -2 * std::log(1 - level);                            // chi^2_2 quantile
@@ -555,6 +589,101 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
 }
 
 // ------------------------------------------------------------------ step 4
+namespace {
+// min over w in [lo, hi] of |e^{iw} - p| (|1 - p e^{-iw}|): at the arc point nearest to arg p.
+double arc_distance(std::complex<double> p, double lo, double hi) {
+  const double r = std::abs(p), phi = std::arg(p);
+  double d = 0;  // angular distance from phi (or -phi: real coefficients, conjugate poles) to [lo, hi]
+  for (double f : {phi, -phi}) {
+    const double a = f < lo ? lo - f : (f > hi ? f - hi : 0);
+    d = f == phi ? a : std::min(d, a);
+  }
+  d = std::min(d, pi);
+  return std::max(0.0, std::sqrt(std::max(0.0, 1 + r * r - 2 * r * std::cos(d))) - 1e-12);
+}
+// Local bounds on [lo, hi] for b(z^-1)/a(z^-1) with roots `poles` of a: |a| >= prod dist(p_i, arc).
+struct LocalTf {
+  double sup = inf, der = inf;
+};
+LocalTf local_tf(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen::VectorXcd& poles, double lo, double hi) {
+  double amin = 1;
+  for (Eigen::Index i = 0; i < poles.size(); ++i) amin *= arc_distance(poles[i], lo, hi);
+  LocalTf t;
+  if (!(amin > 0)) return t;
+  t.sup = b.cwiseAbs().sum() / amin;
+  t.der = weighted_l1(b) / amin + b.cwiseAbs().sum() * weighted_l1(a) / (amin * amin);
+  return t;
+}
+
+// b_data (docs/methods/hinf-bound.md, section 6): for w in cell_j,
+//   G0(w) - Ghat(w) = [G0(w_j) - Ghat(w_j)] + Delta(w) + r(w),
+//   Delta(w) = (Gamma(w) - Gamma(w_j))^T theta_ref - Ghat(w) + Ghat(w_j)   (known),
+//   |r(w)| <= g(w) = sum_{k<n} radius_k |F_k(w) - F_k(w_j)| + sum_{k>=n} M rho^k |F_k(w) - F_k(w_j)|,
+// so |G0 - Ghat| <= maxdist_{P(w_j)}(Ghat(w_j) - Delta(w)) + g(w). Each cell is cut into pieces;
+// on a piece of half width eta around w_i every term is bounded by its value at w_i plus eta times
+// a Lipschitz constant valid on that piece (from the distance of the poles to the piece's arc).
+double data_bound(const UncertaintySet& S, const RationalModel& nominal, const Eigen::VectorXd& h, double Wder,
+                  double Gder, double& kappa) {
+  const int n = static_cast<int>(S.theta_ref.size());
+  if (n == 0 || S.theta_radius.size() != n) {
+    kappa = inf;
+    return inf;
+  }
+  const OrthonormalBasis& basis = S.basis;
+  const int m = basis.block(), K = static_cast<int>(S.tail_coefficients.size());
+  const double D0 = basis.front_derivative_bound(), H0 = basis.hinf_bound(), L0 = basis.allpass_derivative_bound();
+  std::vector<Eigen::VectorXcd> front_poles;
+  for (const auto& f : basis.fronts()) front_poles.push_back(roots_of(f.a));
+  const Eigen::VectorXcd ap_poles = roots_of(basis.allpass().a), nom_poles = roots_of(nominal.a);
+  // Global slope kappa (reported): sum_k radius_k sup|F_k'| + sup|T'|.
+  kappa = S.tail_beta;
+  for (int k = 0; k < n; ++k) kappa += S.theta_radius[k] * (D0 + double(k / m) * H0 * L0);
+  // Weights of |F_k(w) - F_k(w_j)| in g and in the Lipschitz constant of Delta.
+  Eigen::VectorXd wg(n + K), wd(n + K);
+  wg << S.theta_radius, S.tail_coefficients;
+  wd << S.theta_ref.cwiseAbs(), Eigen::VectorXd::Zero(K);
+  const Eigen::VectorXcd th = S.theta_ref.cast<std::complex<double>>();
+  const auto& w = S.frequencies;
+  const int nw = static_cast<int>(w.size()), sub = 64;
+  double b = 0;
+  for (int j = 0; j < nw; ++j) {
+    const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
+    const Eigen::VectorXcd Fj = basis.frequency_responses(w[j], n + K);
+    const std::complex<double> Gr = Fj.head(n).transpose() * th, Gh = nominal(w[j]);
+    const double eta = (hi - lo) / (2 * sub);
+    for (int i = 0; i < sub; ++i) {
+      const double wi = lo + (2 * i + 1) * eta, plo = wi - eta, phi = wi + eta;
+      // Local sup|F_k'| <= Dc + floor(k/m) Hc Lc on the piece (never above the global bound).
+      double Hc = 0, Dc = 0, Lc = 0;
+      for (std::size_t f = 0; f < front_poles.size(); ++f) {
+        const LocalTf t = local_tf(basis.fronts()[f].b, basis.fronts()[f].a, front_poles[f], plo, phi);
+        Hc = std::max(Hc, t.sup);
+        Dc = std::max(Dc, t.der);
+      }
+      for (Eigen::Index q = 0; q < ap_poles.size(); ++q) {
+        const double d = arc_distance(ap_poles[q], plo, phi), r = std::abs(ap_poles[q]);
+        Lc += d > 0 ? (1 - r * r) / (d * d) : inf;
+      }
+      const LocalTf nom = local_tf(nominal.b, nominal.a, nom_poles, plo, phi);
+      const Eigen::VectorXcd Fi = basis.frequency_responses(wi, n + K);
+      double g = 2 * S.tail_remainder, lipg = 0, lipd = std::min(Gder, nom.der);
+      for (int k = 0; k < n + K; ++k) {
+        const double dk = std::min(D0 + double(k / m) * H0 * L0, Dc + double(k / m) * Hc * Lc);
+        g += wg[k] * std::abs(Fi[k] - Fj[k]);
+        lipg += wg[k] * dk;
+        lipd += wd[k] * dk;
+      }
+      const std::complex<double> Gi = Fi.head(n).transpose() * th;
+      const std::complex<double> delta = (Gi - Gr) - (nominal(wi) - Gh);
+      const double dist = S.regions[j].max_distance(Gh - delta) + eta * lipd + g + eta * lipg;
+      const double Wi = 1 / std::abs(poly_at(h, wi)) + eta * Wder;
+      b = std::max(b, Wi * dist);
+    }
+  }
+  return b;
+}
+}  // namespace
+
 BoundResult error_bound(const UncertaintySet& S, const RationalModel& nominal, const Eigen::VectorXd& h) {
   const auto& w = S.frequencies;
   const int nw = static_cast<int>(w.size());
@@ -571,6 +700,7 @@ BoundResult error_bound(const UncertaintySet& S, const RationalModel& nominal, c
   const double s = S.beta1 + Gder;  // sup |d/dw (G - Ghat)|
   B.b = 0;
   B.b_grid = 0;
+  B.b_data = data_bound(S, nominal, h, Wder, Gder, B.kappa);
   for (int j = 0; j < nw; ++j) {
     const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
     B.lambda[j] = std::max(w[j] - lo, hi - w[j]);

@@ -348,11 +348,11 @@ int main(int argc, char** argv) {
     }
 
     std::mt19937_64 rng(seed);
-    int fail_b = 0, fail_grid = 0, fail_regions = 0, falsified = 0;
+    int fail_b = 0, fail_grid = 0, fail_data = 0, fail_regions = 0, falsified = 0;
     double time_total = 0;
     const std::clock_t cpu0 = std::clock();
     sets::HinfBoundResult first;
-    std::vector<double> bs, bgrids, ubs, ubgrids, radii;
+    std::vector<double> bs, bgrids, bdatas, ubs, ubgrids, ubdatas, radii;
     for (int run = 0; run < runs; ++run) {
       if (builtin) {
         const Simulated s = simulate(G0, N, noise_std, bounded, rng);
@@ -371,12 +371,15 @@ int main(int argc, char** argv) {
         const double e = sets::weighted_error([&](double w) { return G0(w); }, R.nominal.model, R.weight.h);
         fail_b += e > R.bound.b;
         fail_grid += e > R.bound.b_grid;
+        fail_data += e > R.bound.b_data;
         bool miss = false;
         for (int j = 0; j < grid_points; ++j) miss |= !R.set.regions[j].contains(G0(grid[j]));
         fail_regions += miss;
       }
       bs.push_back(R.bound.b);
       bgrids.push_back(R.bound.b_grid);
+      bdatas.push_back(R.bound.b_data);
+      ubdatas.push_back(R.unweighted.b_data);
       ubs.push_back(R.unweighted.b);
       ubgrids.push_back(R.unweighted.b_grid);
       double rad = 0;
@@ -414,9 +417,12 @@ int main(int argc, char** argv) {
     std::cout << "beta1 (eq. 12) = " << R.set.beta1 << ", first regression sample " << R.set.first_sample + 1
               << ", tail terms evaluated " << R.set.tail_terms << "\n";
     std::cout << "Bound (run 1): b = " << R.bound.b << " (with the interpolation term lambda_j beta_j; guaranteed on [0, pi])\n"
+              << "               b_data = " << R.bound.b_data << " (between-grid term from the set's coefficient box"
+              << (bounded ? "; guaranteed on [0, pi])\n"
+                          : "; on [0, pi] at level >= " + std::to_string(1 - (1 + opt.uncertainty.coefficient_share) * (1 - alpha)) + ")\n")
               << "               b_grid = " << R.bound.b_grid << " (max_j delta_u(w_j): grid only, the paper's practical choice)\n"
-              << "               unweighted (W = 1): ||G0 - Ghat||_inf <= " << R.unweighted.b
-              << ", on the grid " << R.unweighted.b_grid << "\n";
+              << "               unweighted (W = 1): ||G0 - Ghat||_inf <= " << R.unweighted.b << " (prior), "
+              << R.unweighted.b_data << " (data), on the grid " << R.unweighted.b_grid << "\n";
     const double mean_time = time_total / runs;
     auto mean = [](const std::vector<double>& v) {
       double s = 0;
@@ -424,22 +430,28 @@ int main(int argc, char** argv) {
       return v.empty() ? 0.0 : s / v.size();
     };
     std::cout << "Means over " << bs.size() << " runs: region radius " << mean(radii) << ", unweighted bound on the grid "
-              << mean(ubgrids) << ", unweighted bound " << mean(ubs) << ", b " << mean(bs) << "\n";
+              << mean(ubgrids) << ", unweighted bound " << mean(ubs) << " (prior), " << mean(ubdatas) << " (data), b " << mean(bs)
+              << ", b_data " << mean(bdatas) << ", b_grid " << mean(bgrids) << "\n";
     const double cpu_per_run = double(std::clock() - cpu0) / CLOCKS_PER_SEC / runs;  // includes simulation
     std::cout << "Time per data set: " << mean_time << " s wall, " << cpu_per_run
               << " s CPU (CPU includes simulating the data and the Monte Carlo check)\n";
-    double fr = 0, fr_grid = 0, fr_reg = 0;
+    double fr = 0, fr_grid = 0, fr_reg = 0, fr_data = 0;
     const int valid = runs - falsified;
     if (builtin) {
       fr = valid ? double(fail_b) / valid : 0;
       fr_grid = valid ? double(fail_grid) / valid : 0;
+      fr_data = valid ? double(fail_data) / valid : 0;
       fr_reg = valid ? double(fail_regions) / valid : 0;
       const double mc = std::sqrt(std::max(1 - alpha, 1e-12) * alpha / std::max(valid, 1));
       std::cout << "\nMonte Carlo, " << runs << " runs (" << falsified << " falsified):\n"
                 << "  G0 outside G(Ghat, W, b)      (dense grid, 4096 points): " << fail_b << " -> failure rate " << fr << "\n"
+                << "  G0 outside G(Ghat, W, b_data) (dense grid, 4096 points): " << fail_data << " -> failure rate " << fr_data << "\n"
                 << "  G0 outside G(Ghat, W, b_grid) (dense grid, 4096 points): " << fail_grid << " -> failure rate " << fr_grid << "\n"
                 << "  some G0(w_j) outside its region P(w_j):                  " << fail_regions << " -> " << fr_reg << "\n";
       if (!bounded) std::cout << "  allowed: 1 - alpha = " << 1 - alpha << " (Monte Carlo std error at that rate " << mc << ")\n";
+      if (!bounded)
+        std::cout << "  allowed for b_data: (1 + " << opt.uncertainty.coefficient_share << ") (1 - alpha) = "
+                  << (1 + opt.uncertainty.coefficient_share) * (1 - alpha) << " (regions and coefficient box)\n";
     }
 
     if (!json_path.empty()) {
@@ -449,6 +461,14 @@ int main(int argc, char** argv) {
       j["noise"] = noise_name;
       j["b"] = R.bound.b;
       j["b_grid"] = R.bound.b_grid;
+      j["b_data"] = R.bound.b_data;
+      j["b_unweighted_data"] = R.unweighted.b_data;
+      j["failure_rate_data"] = fr_data;
+      j["b_data_runs"] = bdatas;
+      j["mean_b"] = mean(bs);
+      j["mean_b_data"] = mean(bdatas);
+      j["mean_b_grid"] = mean(bgrids);
+      j["mean_unweighted_b_data"] = mean(ubdatas);
       j["b_unweighted"] = R.unweighted.b;
       j["b_unweighted_grid"] = R.unweighted.b_grid;
       j["failure_rate"] = fr;

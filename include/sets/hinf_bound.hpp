@@ -49,6 +49,9 @@ struct UncertaintyOptions {
   int max_lag = -1;          // noise covariance lags (<0: min(100, rows/10))
   int first_sample = -1;     // first regression row (<0: where the initial-condition bound is small)
   int tail_terms = -1;       // basis functions of the tail evaluated exactly (<0: automatic)
+  // Stochastic: failure probability of the coefficient box used by the data-based bound b_data,
+  // as a share of 1 - alpha (b_data then holds with probability >= 1 - (1 + share)(1 - alpha)).
+  double coefficient_share = 0.1;
 };
 
 /// A convex region of the complex plane: a rectangle (centre +- half widths) or an ellipse
@@ -82,6 +85,15 @@ struct UncertaintySet {
   std::vector<ErrorTerms> terms;
   Eigen::VectorXd theta;       // estimated basis coefficients
   double beta1 = 0;            // sup |dG/dw| over G in S, eq. (12)
+  // For the data-based interpolation (b_data): |theta0_k - theta_ref_k| <= theta_radius_k
+  // (bounded noise: the certified PUI box; stochastic: at level coefficient_level, Bonferroni over
+  // k) and tail_beta >= sup|dT/dw| for the tail T = sum_{k>=n} g0(k) F_k (prior only).
+  OrthonormalBasis basis = OrthonormalBasis::fir();
+  Eigen::VectorXd theta_ref, theta_radius;
+  double tail_beta = 0;
+  Eigen::VectorXd tail_coefficients;  // M rho^k, k = n .. n+K-1 (tail terms evaluated exactly)
+  double tail_remainder = 0;          // >= sup|sum_{k>=n+K} g0(k) F_k|
+  double coefficient_level = 0;
   double level = 0;            // probability level used at each frequency (stochastic)
   double noise_variance = 0;   // R_v(0) estimate (stochastic)
   int first_sample = 0, tail_terms = 0, rows = 0;
@@ -152,6 +164,11 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
 struct BoundResult {
   double b = 0;           // max_j [delta_u + lambda_j beta_j]: bounds ||W (G - Ghat)||_inf on [0, pi]
   double b_grid = 0;      // max_j delta_u(w_j): the bound on the grid only
+  // Data-based bound on [0, pi]: the between-grid term from the coefficient box of the set
+  // (theta_radius) and the tail prior only, certified on a sub-grid of every cell
+  // (docs/methods/hinf-bound.md, section 6). Infinite if the set carries no box.
+  double b_data = 0;
+  double kappa = 0;       // sum_k theta_radius_k sup|F_k'| + tail_beta: slope of the unknown part
   Eigen::VectorXd delta_u, lambda, beta;
 };
 

@@ -57,6 +57,9 @@ class OrthonormalBasis {
   double allpass_derivative_bound() const;
   /// beta1 = sum_k M rho^k sup|dF_k/dw|, eq. (12), in closed form (see the method doc).
   double beta1(double M, double rho) const;
+  /// The fronts and the inner factor (for frequency-local bounds, hinf_bound.cpp).
+  const std::vector<DiscreteTf>& fronts() const { return fronts_; }
+  const DiscreteTf& allpass() const { return allpass_; }
 
  private:
   BasisKind kind_ = BasisKind::fir;
