@@ -483,3 +483,45 @@ TEST(HinfDataBound, StochasticCoverageOfTheTrueSystem) {
   EXPECT_LE(miss_unweighted, 11);
   EXPECT_EQ(better, runs);
 }
+
+// An adversarial "true system": noise-free FIR data y = Phi theta0, priors |v| <= vbar. Every
+// theta1 = theta0 + d with |Phi d|_inf <= vbar explains the same data (v = Phi d), so G1 = Gamma^T
+// theta1 is as legitimate a truth as G0 and b_data must bound it too. d oscillates in k, so G1
+// varies fast between the 5 grid frequencies: this checks the between-grid term itself.
+RC_GTEST_PROP(HinfDataBound, BoundHoldsForEverySystemConsistentWithTheData, ()) {
+  const int n = 8, N = 200;
+  std::mt19937_64 rng(*rc::gen::arbitrary<unsigned>());
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::VectorXd theta0(n), d(n), u(N);
+  for (int k = 0; k < n; ++k) theta0[k] = 0.5 * std::pow(0.6, k) * U(rng);
+  for (auto& x : u) x = U(rng);
+  const double f = *rc::gen::inRange(0, 100) / 100.0 * pi;  // oscillation of d in k
+  for (int k = 0; k < n; ++k) d[k] = std::cos(f * k + U(rng)) * std::pow(0.85, k);
+  const Eigen::MatrixXd Phi = OrthonormalBasis::fir().responses(u, n);
+  const Eigen::VectorXd y = Phi * theta0;
+  const double vbar = *rc::gen::inRange(5, 50) / 100.0;
+  d *= vbar / (Phi * d).cwiseAbs().maxCoeff() * (1 - 1e-9);
+  HinfPriors p;
+  p.M = 1;
+  p.rho = 0.9;
+  p.u_bar = 0;
+  HinfBoundOptions o;
+  o.uncertainty.noise = NoiseModel::bounded;
+  o.uncertainty.v_bar = vbar;
+  o.uncertainty.first_sample = 0;
+  o.nominal.order = 1;
+  o.nominal.iterations = 4;
+  o.weight.degree = 4;
+  const Eigen::VectorXd grid = uniform_grid(5);
+  const HinfBoundResult R = hinf_bound(u, y, OrthonormalBasis::fir(), n, grid, p, o);
+  RC_ASSERT(!R.set.empty);
+  const Eigen::VectorXd theta1 = theta0 + d;
+  RC_PRE(theta1.cwiseAbs().maxCoeff() <= 1.0);  // theta1 within the prior |g(k)| <= rho^k? (checked below)
+  for (int k = 0; k < n; ++k) RC_PRE(std::abs(theta1[k]) <= std::pow(p.rho, k));
+  const auto G1 = [&](double w) {
+    return cd(OrthonormalBasis::fir().frequency_responses(w, n).transpose() * theta1.cast<cd>());
+  };
+  for (int j = 0; j < grid.size(); ++j) RC_ASSERT(R.set.regions[j].contains(G1(grid[j]), 1e-9));
+  RC_ASSERT(weighted_error(G1, R.nominal.model, R.weight.h, 4096) <= R.bound.b_data);
+  RC_ASSERT(weighted_error(G1, R.nominal.model, Eigen::VectorXd::Ones(1), 4096) <= R.unweighted.b_data);
+}
