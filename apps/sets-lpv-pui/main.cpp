@@ -92,6 +92,12 @@ struct Setting {
   double delta_e;
 };
 
+// Which measurement errors widen the regressor boxes (eqs. 18–26). `both` is the paper's method
+// and the only guaranteed choice; the others are diagnostics for docs/reproduction/cerone.md
+// (e.g. `scheduling` is eq. 25 read literally: min/max over eps only, w_{t-i} taken as y_{t-i}).
+enum class RegressorNoise { both, scheduling, output, none };
+RegressorNoise g_regressor_noise = RegressorNoise::both;
+
 RunResult simulate_and_bound(const Setting& s, int run, std::uint64_t seed, const sets::PuiOptions& options) {
   const TableSpec& spec = kTables[s.table];
   const LpvModelStructure model = LpvModelStructure::cerone_regruto_example();
@@ -122,7 +128,19 @@ RunResult simulate_and_bound(const Setting& s, int run, std::uint64_t seed, cons
   r.snr_w = 10 * std::log10(w.tail(T - n0).squaredNorm() / eta.tail(T - n0).squaredNorm());
   r.snr_lambda = 10 * std::log10(lambda.col(0).tail(T - n0).squaredNorm() / eps.tail(T - n0).squaredNorm());
   const auto t0 = std::chrono::steady_clock::now();
-  const sets::LpvPuiResult res = sets::lpv_pui(model, d, options);
+  sets::LpvPuiResult res;
+  if (g_regressor_noise == RegressorNoise::both) {
+    res = sets::lpv_pui(model, d, options);
+  } else {
+    // Diagnostic: regressor boxes without one or both error sources; the output strip keeps Delta E.
+    LpvMeasurements dr = d;
+    if (g_regressor_noise != RegressorNoise::output) dr.delta_eta.setZero();
+    if (g_regressor_noise != RegressorNoise::scheduling) dr.delta_eps.setZero();
+    res.regression = sets::lpv_regression(model, dr);
+    for (Eigen::Index row = 0; row < res.regression.Y.size(); ++row)
+      res.regression.Y[row] = sets::interval_around(d.y[res.regression.time[static_cast<std::size_t>(row)]], s.delta_e);
+    res.pui = sets::pui(sets::FeasibleParameterSet::from_interval_data(res.regression.Phi, res.regression.Y), options);
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.empty = res.pui.empty;
   r.guaranteed = res.pui.guaranteed;
@@ -231,7 +249,10 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
     if (s.table != last_table) {
       std::cout << "\nTable " << spec.name << ": lambda " << (spec.uniform ? "uniform in [-1, 1]" : "= sin(0.1 t)")
                 << ", N = " << spec.N << ", " << runs << " runs, "
-                << (options.orthants == sets::OrthantSelection::all ? "all orthants" : "Remark-2 orthants") << '\n';
+                << (options.orthants == sets::OrthantSelection::all ? "all orthants" : "Remark-2 orthants")
+                << (g_regressor_noise == RegressorNoise::both ? ""
+                                                             : ", DIAGNOSTIC regressor boxes (not guaranteed)")
+                << '\n';
       last_table = s.table;
     }
     const Stats sw = stats(snr_w), sl = stats(snr_l);
@@ -250,6 +271,10 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
     js["lambda"] = spec.uniform ? "uniform" : "sin";
     js["delta_e"] = s.delta_e;
     js["runs"] = runs;
+    js["regressor_noise"] = g_regressor_noise == RegressorNoise::both         ? "both"
+                            : g_regressor_noise == RegressorNoise::scheduling ? "scheduling"
+                            : g_regressor_noise == RegressorNoise::output     ? "output"
+                                                                              : "none";
     js["snr_w"] = sw.mean;
     js["snr_lambda"] = sl.mean;
     js["theta_true"] = std::vector<double>(kTheta, kTheta + 6);
@@ -483,6 +508,11 @@ int main(int argc, char** argv) {
   app.add_option("--orthants", orthants, "remark2 (least-squares orthant, extended at zero bounds) or all")
       ->check(CLI::IsMember({"remark2", "all"}));
   app.add_option("--json", json_path, "write the results as JSON");
+  std::string regressor_noise = "both";
+  app.add_option("--regressor-noise", regressor_noise,
+                 "errors that widen the regressor boxes: both (the paper's method, guaranteed); scheduling, "
+                 "output or none are NOT guaranteed diagnostics (docs/reproduction/cerone.md)")
+      ->check(CLI::IsMember({"both", "scheduling", "output", "none"}));
   app.add_option("--threads", threads, "worker threads (one FPS and LP per thread)")->check(CLI::Range(1u, 256u));
   app.add_option("--data", data_path, "CSV file with a header line: real-data mode");
   app.add_option("--u", ucol, "input column (name or 1-based number)");
@@ -499,6 +529,10 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 1;
   }
 
+  g_regressor_noise = regressor_noise == "scheduling" ? RegressorNoise::scheduling
+                      : regressor_noise == "output"   ? RegressorNoise::output
+                      : regressor_noise == "none"     ? RegressorNoise::none
+                                                      : RegressorNoise::both;
   sets::PuiOptions options;
   options.orthants = orthants == "all" ? sets::OrthantSelection::all : sets::OrthantSelection::remark2;
   try {
