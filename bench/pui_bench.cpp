@@ -42,4 +42,23 @@ BENCHMARK(BM_Pui)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+namespace {
+
+// Building the set strip by strip (add_strip), as a recursive estimator would.
+void BM_AddStrip(benchmark::State& state) {
+  const int N = static_cast<int>(state.range(0));
+  const auto src = make_fps(N);
+  const Eigen::MatrixXd Phi = sets::midpoint(sets::IntervalMatrix(src.regressors()));
+  const Eigen::VectorXd y = sets::midpoint(sets::IntervalVector(src.outputs()));
+  for (auto _ : state) {
+    sets::FeasibleParameterSet fps(6);
+    for (int t = 0; t < N; ++t) fps.add_strip(Phi.row(t).transpose(), y[t], 0.05);
+    benchmark::DoNotOptimize(fps.size());
+  }
+}
+
+}  // namespace
+
+BENCHMARK(BM_AddStrip)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
 BENCHMARK_MAIN();

@@ -10,6 +10,7 @@
 
 #include "sets/error.hpp"
 #include "sets/linear_program.hpp"
+#include "certified_extent.hpp"
 
 namespace sets {
 
@@ -33,6 +34,7 @@ FeasibleParameterSet FeasibleParameterSet::from_data(const Eigen::Ref<const Eige
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
   f.Phi_.resize(Phi.rows(), Phi.cols());
   f.Y_.resize(Phi.rows());
+  f.n_ = Phi.rows();
   for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
     for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
       if (!std::isfinite(Phi(t, j)))
@@ -59,7 +61,7 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  // Same checks as add_strip, but one allocation (add_strip's row-by-row growth is quadratic).
+  // Same checks as add_strip, one allocation.
   for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
     const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
     for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
@@ -72,6 +74,7 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
   }
   f.Phi_ = Phi;
   f.Y_ = Y;
+  f.n_ = Phi.rows();
   return f;
 }
 
@@ -95,17 +98,20 @@ void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& 
   }
   if (!std::isfinite(Y.lower()) || !std::isfinite(Y.upper()))
     throw InputError(where + ", output bound is not finite");
-  const Eigen::Index n = Y_.size();
-  Phi_.conservativeResize(n + 1, p_);
-  Phi_.row(n) = Phi.transpose();
-  Y_.conservativeResize(n + 1);
-  Y_[n] = Y;
+  if (n_ == Phi_.rows()) {  // grow geometrically: a loop of add_strip stays linear in N
+    const Eigen::Index capacity = std::max<Eigen::Index>(16, 2 * n_);
+    Phi_.conservativeResize(capacity, p_);
+    Y_.conservativeResize(capacity);
+  }
+  Phi_.row(n_) = Phi.transpose();
+  Y_[n_] = Y;
+  ++n_;
 }
 
 BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
   if (theta.size() != p_) throw InputError("FeasibleParameterSet::contains: wrong dimension");
   BoolInterval result = BoolInterval::yes;
-  for (Eigen::Index t = 0; t < Y_.size(); ++t) {
+  for (Eigen::Index t = 0; t < n_; ++t) {
     // The range of phi^T theta over the regressor box is [lo_true, hi_true]; L and U enclose them.
     Interval L(0.0), U(0.0);
     for (int j = 0; j < p_; ++j) {
@@ -122,15 +128,15 @@ BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::Vector
 }
 
 Eigen::VectorXd FeasibleParameterSet::least_squares() const {
-  const Eigen::MatrixXd A = midpoint(Phi_);
-  const Eigen::VectorXd y = midpoint(Y_);
+  const Eigen::MatrixXd A = midpoint(IntervalMatrix(regressors()));
+  const Eigen::VectorXd y = midpoint(IntervalVector(outputs()));
   return A.colPivHouseholderQr().solve(y);
 }
 
 namespace {
 
 // Row coefficients of sample t in orthant s: the minimising (lower) and maximising (upper) ends.
-void orthant_rows(const IntervalMatrix& Phi, Eigen::Index t, const Orthant& s, Eigen::VectorXd& lo_row,
+void orthant_rows(const Eigen::Ref<const IntervalMatrix>& Phi, Eigen::Index t, const Orthant& s, Eigen::VectorXd& lo_row,
                   Eigen::VectorXd& hi_row) {
   const Eigen::Index p = Phi.cols();
   lo_row.resize(p);
@@ -149,7 +155,7 @@ HPolytope FeasibleParameterSet::orthant_polytope(const Orthant& s) const {
     throw InputError("orthant_polytope: orthant has the wrong dimension");
   if (s.empty() && eiv_)
     throw InputError("orthant_polytope: interval regressors need an orthant");
-  const Eigen::Index N = Y_.size();
+  const Eigen::Index N = n_;
   const Eigen::Index extra = s.empty() ? 0 : p_;
   Eigen::MatrixXd A(2 * N + extra, p_);
   Eigen::VectorXd b(2 * N + extra);
@@ -274,118 +280,32 @@ struct OrthantOutcome {
   IntervalVector box;
   Eigen::VectorXd float_lo, float_hi;  // floating-point LP ends (for the Remark-2 zero test)
   Eigen::MatrixXd lower_points, upper_points;
+  std::vector<double> maxima;          // bounds on max d^T theta over this orthant piece
   bool certified = false;
   int lps = 0;
 };
 
-bool is_zero_face(const Orthant& s, int j, bool lower) {
-  if (s.empty()) return false;
-  return lower ? s[static_cast<std::size_t>(j)] > 0 : s[static_cast<std::size_t>(j)] < 0;
-}
-
-OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options) {
-  const bool safe = options.safe;
-  const int p = fps.dimension();
+OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
+                             const std::vector<Eigen::VectorXd>& directions) {
   OrthantLp o(fps, s, options.working_set, options.warm_start);
+  // The orthant's sign constraints are variable bounds of the LP, so ends on a coordinate face
+  // are exact and need no artificial face there.
+  const detail::Extent e =
+      detail::certified_extent(o.lp(), [&](int& lps) { return o.solve(lps); }, directions, options.safe);
   OrthantOutcome out;
-  out.float_lo.resize(p);
-  out.float_hi.resize(p);
-  out.lower_points.resize(p, p);
-  out.upper_points.resize(p, p);
-  // Phase 1: floating-point PUIs; the 2p problems share one constraint matrix and warm-start.
-  std::vector<LpSolution> phase1(static_cast<std::size_t>(2 * p));
-  for (int l = 0; l < p; ++l) {
-    for (Sense sense : {Sense::minimize, Sense::maximize}) {
-      o.lp().set_objective_coordinate(l, sense);
-      const LpSolution& sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))] = o.solve(out.lps);
-      if (sol.status == LpStatus::infeasible) {
-        // Certify emptiness with exact rational arithmetic before calling the orthant empty.
-        // (A working set is a relaxation: if it is empty, so is the full set.)
-        const LpSolution exact = o.lp().solve_exact();
-        ++out.lps;
-        out.status = exact.status == LpStatus::infeasible ? OrthantStatus::empty : OrthantStatus::unknown;
-        return out;
-      }
-      const bool lower = sense == Sense::minimize;
-      const double end = sol.status == LpStatus::unbounded ? (lower ? -inf : inf) : sol.objective;
-      (lower ? out.float_lo : out.float_hi)[l] = end;
-      (lower ? out.lower_points : out.upper_points).col(l) = sol.x;
-    }
-  }
-  out.status = OrthantStatus::feasible;
-  out.box = make_box(out.float_lo.cwiseMin(out.float_hi), out.float_hi.cwiseMax(out.float_lo));
-  if (!safe) return out;
-
-  // Phase 2: bound the variables by a box X slightly larger than the phase-1 PUIs, so that the
-  // Neumaier–Shcherbina bound is finite. The orthant piece C is convex, so if every safe bound
-  // over C ∩ X stays strictly inside the artificial faces of X, then C ⊂ X and the bounds hold
-  // for C itself (a point of C outside X would put a point of C on an artificial face).
-  Eigen::VectorXd width = out.float_hi - out.float_lo;
-  for (double factor : {1e-2, 1e-1, 1.0, 10.0}) {
-    Eigen::VectorXd xlo(p), xhi(p);
-    for (int j = 0; j < p; ++j) {
-      const double w = std::isfinite(width[j]) ? width[j] : 0.0;
-      const double mlo = factor * w + 1e-8 * (1 + std::abs(out.float_lo[j]));
-      const double mhi = factor * w + 1e-8 * (1 + std::abs(out.float_hi[j]));
-      xlo[j] = is_zero_face(s, j, true) ? 0.0 : out.float_lo[j] - mlo;
-      xhi[j] = is_zero_face(s, j, false) ? 0.0 : out.float_hi[j] + mhi;
-      o.lp().set_variable_bounds(j, xlo[j], xhi[j]);
-    }
-    bool ok = true;
-    Eigen::VectorXd slo(p), shi(p);
-    for (int l = 0; l < p && ok; ++l) {
-      for (Sense sense : {Sense::minimize, Sense::maximize}) {
-        // An unbounded end stays infinite: nothing to certify.
-        if (sense == Sense::minimize && std::isinf(out.float_lo[l])) { slo[l] = -inf; continue; }
-        if (sense == Sense::maximize && std::isinf(out.float_hi[l])) { shi[l] = inf; continue; }
-        // Over the working set only: a relaxation, so the safe bound holds for the full set,
-        // and phase 1 made the relaxation's optimum the full one.
-        o.lp().set_objective_coordinate(l, sense);
-        // Any multipliers give a valid bound: first try phase 1's duals (zero for rows added
-        // later) with the box X, which saves a re-solve whenever they certify the end.
-        LpSolution sol = phase1[static_cast<std::size_t>(2 * l + (sense == Sense::maximize))];
-        if (sol.status == LpStatus::optimal) {
-          const Eigen::Index m_before = sol.row_dual.size();
-          sol.row_dual.conservativeResize(o.lp().num_rows());
-          sol.row_dual.tail(o.lp().num_rows() - m_before).setZero();
-          const double b = o.lp().safe_bound(sol);
-          const bool inside = sense == Sense::minimize ? (b > xlo[l] || is_zero_face(s, l, true))
-                                                       : (b < xhi[l] || is_zero_face(s, l, false));
-          if (!inside) sol.status = LpStatus::infeasible;  // fall back to a re-solve below
-        }
-        if (sol.status != LpStatus::optimal) {
-          sol = o.lp().solve();
-          ++out.lps;
-        }
-        if (sol.status != LpStatus::optimal) {
-          ok = false;
-          break;
-        }
-        const double bound = o.lp().safe_bound(sol);
-        if (sense == Sense::minimize) {
-          slo[l] = bound;
-          if (!(bound > xlo[l] || is_zero_face(s, l, true))) ok = false;
-        } else {
-          shi[l] = bound;
-          if (!(bound < xhi[l] || is_zero_face(s, l, false))) ok = false;
-        }
-        (sense == Sense::minimize ? out.lower_points : out.upper_points).col(l) = sol.x;
-      }
-    }
-    if (ok) {
-      for (int j = 0; j < p; ++j) {
-        // Ends on a true orthant face are exact (0); infinite ends stay infinite.
-        if (is_zero_face(s, j, true)) slo[j] = std::max(slo[j], 0.0);
-        if (is_zero_face(s, j, false)) shi[j] = std::min(shi[j], 0.0);
-        if (std::isinf(out.float_lo[j])) slo[j] = -inf;
-        if (std::isinf(out.float_hi[j])) shi[j] = inf;
-      }
-      out.box = make_box(slo, shi.cwiseMax(slo));
-      out.certified = true;
-      return out;
-    }
-  }
-  return out;  // floating-point box only, not certified
+  out.lps = e.lps;
+  out.status = e.status == detail::ExtentStatus::feasible ? OrthantStatus::feasible
+               : e.status == detail::ExtentStatus::empty  ? OrthantStatus::empty
+                                                          : OrthantStatus::unknown;
+  if (out.status != OrthantStatus::feasible) return out;
+  out.float_lo = e.float_lo;
+  out.float_hi = e.float_hi;
+  out.lower_points = e.lower_points;
+  out.upper_points = e.upper_points;
+  out.maxima = e.maxima;
+  out.certified = e.certified;
+  out.box = make_box(e.lo, e.hi);
+  return out;
 }
 
 Orthant sign_orthant(const Eigen::VectorXd& theta) {
@@ -407,11 +327,21 @@ std::vector<Orthant> all_orthants(int p) {
   return out;
 }
 
-PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
+namespace {
+
+// PUIs and, from the same LPs, bounds on max d^T theta for each direction (`maxima`): the
+// maximum over the orthant pieces that pui() visits.
+PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
+                  const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima, const char* what) {
   const int p = fps.dimension();
   if (fps.size() < p)
-    throw InputError("pui: " + std::to_string(fps.size()) + " samples for " + std::to_string(p) +
+    throw InputError(std::string(what) + ": " + std::to_string(fps.size()) + " samples for " + std::to_string(p) +
                      " parameters: need at least as many samples as parameters");
+  for (const auto& d : directions)
+    if (d.size() != p)
+      throw InputError(std::string(what) + ": a direction has " + std::to_string(d.size()) + " entries, expected " +
+                       std::to_string(p));
+  maxima.assign(directions.size(), -inf);
   PuiResult result;
   result.lower_points.resize(p, p);
   result.upper_points.resize(p, p);
@@ -421,8 +351,12 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
   auto absorb = [&](const Orthant& s, const OrthantOutcome& oc) {
     result.lp_solves += oc.lps;
     result.orthants.push_back({s, oc.status, oc.box});
-    if (oc.status == OrthantStatus::unknown) all_certified = false;
+    if (oc.status == OrthantStatus::unknown) {
+      all_certified = false;
+      maxima.assign(directions.size(), inf);  // an orthant we could not decide: no bound
+    }
     if (oc.status != OrthantStatus::feasible) return;
+    for (std::size_t k = 0; k < directions.size(); ++k) maxima[k] = std::max(maxima[k], oc.maxima[k]);
     all_certified = all_certified && (oc.certified || !options.safe);
     for (int l = 0; l < p; ++l) {
       if (!any_feasible || oc.box[l].lower() < result.box[l].lower())
@@ -435,9 +369,9 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
   };
 
   if (!fps.has_interval_regressors()) {
-    absorb({}, solve_orthant(fps, {}, options));
+    absorb({}, solve_orthant(fps, {}, options, directions));
   } else if (options.orthants == OrthantSelection::all) {
-    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options));
+    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options, directions));
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
     // (theta_l = 0), the set may continue into the orthant across that face.
@@ -446,7 +380,7 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
     while (!queue.empty()) {
       Orthant s = queue.front();
       queue.pop_front();
-      const OrthantOutcome oc = solve_orthant(fps, s, options);
+      const OrthantOutcome oc = solve_orthant(fps, s, options, directions);
       absorb(s, oc);
       if (oc.status != OrthantStatus::feasible) continue;
       double scale = 1;
@@ -466,7 +400,7 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
     // An empty starting orthant says nothing about the others: fall back to all of them.
     if (!any_feasible && p <= 16) {
       for (const Orthant& s : all_orthants(p))
-        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options));
+        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options, directions));
     }
   }
 
@@ -482,11 +416,31 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
   return result;
 }
 
+}  // namespace
+
+PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
+  std::vector<double> none;
+  return explore(fps, options, {}, none, "pui");
+}
+
+FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions,
+                   const PuiOptions& options) {
+  FpsSupport out;
+  PuiResult r = explore(fps, options, directions, out.maxima, "support");
+  out.empty = r.empty;
+  out.guaranteed = r.guaranteed;
+  out.falsification = std::move(r.falsification);
+  out.box = std::move(r.box);
+  out.lp_solves = r.lp_solves;
+  if (out.empty) out.maxima.assign(directions.size(), -inf);
+  return out;
+}
+
 Falsification find_conflict(const FeasibleParameterSet& fps) {
   // min t  s.t.  Y_lo - t <= phi_c^T theta <= Y_hi + t  (central regressors): the rows that
   // carry the optimal multipliers are a set of samples that cannot hold together.
   const int p = fps.dimension();
-  const Eigen::MatrixXd A = midpoint(fps.regressors());
+  const Eigen::MatrixXd A = midpoint(IntervalMatrix(fps.regressors()));
   LinearProgram lp(p + 1);
   lp.set_variable_bounds(p, 0, inf);
   Eigen::VectorXd row(p + 1);

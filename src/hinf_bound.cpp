@@ -238,36 +238,33 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
       delta[i] = opt.v_bar + ic[i] + tailcoef.dot(Xt.row(i).cwiseAbs().transpose()) + rem * std::sqrt(usq);
     }
     const auto fps = FeasibleParameterSet::from_data(Phi, yr, delta);
-    const PuiResult pr = pui(fps);
-    S.lp_solves += pr.lp_solves;
-    if (pr.empty) {
+    // Extremes of Re and Im Gamma(w_j)^T theta over the FPS: 4 directions per frequency, all from
+    // one working-set LP (row generation) with safe bounds, as for the PUIs. Ordered as four
+    // sweeps along the grid (max Re, min Re, max Im, min Im): neighbouring frequencies have
+    // nearby optima, so each LP starts close to its optimal basis.
+    std::vector<Eigen::VectorXd> dirs;
+    dirs.reserve(static_cast<std::size_t>(4 * nw));
+    for (const Eigen::MatrixXd* G : {&Gre, &Gim})
+      for (double sign : {1.0, -1.0})
+        for (int j = 0; j < nw; ++j) dirs.push_back(sign * G->col(j));
+    const FpsSupport sup = support(fps, dirs);
+    S.lp_solves += sup.lp_solves;
+    if (sup.empty) {
       S.empty = true;
-      S.falsification = pr.falsification.message();
+      S.falsification = sup.falsification.message();
       return S;
     }
-    LinearProgram lp(n);
-    for (int l = 0; l < n; ++l) {
-      if (!std::isfinite(pr.box[l].lower()) || !std::isfinite(pr.box[l].upper()))
+    for (int l = 0; l < n; ++l)
+      if (!std::isfinite(sup.box[l].lower()) || !std::isfinite(sup.box[l].upper()))
         throw NumericalError("bounded noise: parameter " + num(l) + " is unbounded (input not exciting enough)");
-      lp.set_variable_bounds(l, pr.box[l].lower(), pr.box[l].upper());
-    }
-    for (int i = 0; i < R; ++i) {
-      Eigen::VectorXd row(n);
-      for (int l = 0; l < n; ++l) row[l] = midpoint(fps.regressors()(i, l));
-      lp.add_row(row, fps.outputs()[i].lower(), fps.outputs()[i].upper());
-    }
-    auto extreme = [&](const Eigen::VectorXd& c, Sense s) {
-      lp.set_objective(c, s);
-      const LpSolution sol = lp.solve();
-      ++S.lp_solves;
-      if (sol.status != LpStatus::optimal) throw NumericalError("bounded noise: LP over the feasible set failed");
-      const double v = lp.safe_bound(sol);
+    auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
+      const double v = sup.maxima[static_cast<std::size_t>(k)];
       if (!std::isfinite(v)) throw NumericalError("bounded noise: could not certify an LP bound");
       return v;
     };
     for (int j = 0; j < nw; ++j) {
-      const double re_lo = extreme(Gre.col(j), Sense::minimize), re_hi = extreme(Gre.col(j), Sense::maximize);
-      const double im_lo = extreme(Gim.col(j), Sense::minimize), im_hi = extreme(Gim.col(j), Sense::maximize);
+      const double re_hi = extreme(j), re_lo = -extreme(nw + j);
+      const double im_hi = extreme(2 * nw + j), im_lo = -extreme(3 * nw + j);
       FrequencyRegion& P = S.regions[j];
       P.shape = RegionShape::rectangle;
       P.centre = {0.5 * (re_lo + re_hi), 0.5 * (im_lo + im_hi)};

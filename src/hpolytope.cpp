@@ -9,6 +9,7 @@
 
 #include "sets/error.hpp"
 #include "sets/linear_program.hpp"
+#include "certified_extent.hpp"
 #include "verified_linear_algebra.hpp"
 
 namespace sets {
@@ -65,66 +66,78 @@ LinearProgram make_lp(const HPolytope& P) {
   throw EmptySetError(std::string(what) + ": the polytope is empty");
 }
 
+// A certified bound on max d^T x over P from an optimal vertex, needing no box (so it works for
+// unbounded P): n rows S active at the LP optimum with A_S invertible give the multipliers
+// y_S = A_S^{-T} d. If an enclosure of the exact y_S is >= 0, weak duality
+// d^T x = y_S^T A_S x <= y_S^T b_S holds for every x in P, and the sup over the enclosure bounds
+// it. +inf when no such vertex certificate exists (unbounded direction, degenerate or
+// ill-conditioned vertex).
+double vertex_dual_bound(const HPolytope& P, LinearProgram& lp, const Eigen::VectorXd& d) {
+  const int n = P.dimension(), m = P.num_constraints();
+  for (int j = 0; j < n; ++j) lp.set_variable_bounds(j, -inf, inf);
+  lp.set_objective(d, Sense::maximize);
+  const LpSolution sol = lp.solve();
+  if (sol.status != LpStatus::optimal) return inf;
+  // Rows carrying a multiplier first, then the tightest other active rows, until n rows.
+  std::vector<std::pair<double, int>> order;
+  const Eigen::VectorXd slack = P.b() - P.A() * sol.x;
+  for (int i = 0; i < m; ++i) {
+    if (!std::isfinite(P.b()[i])) continue;
+    const double scale = 1 + std::abs(P.b()[i]) + P.A().row(i).cwiseAbs().sum() * sol.x.cwiseAbs().maxCoeff();
+    const double key = sol.row_dual[i] != 0 ? -1.0 : std::abs(slack[i]) / scale;
+    if (key <= 1e-7) order.emplace_back(key, i);
+  }
+  if (static_cast<int>(order.size()) < n) return inf;
+  std::sort(order.begin(), order.end());
+  Eigen::MatrixXd AtS(n, n);  // A_S^T
+  Eigen::VectorXd bS(n);
+  for (int k = 0; k < n; ++k) {
+    AtS.col(k) = P.A().row(order[static_cast<std::size_t>(k)].second).transpose();
+    bS[k] = P.b()[order[static_cast<std::size_t>(k)].second];
+  }
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(AtS);
+  if (!lu.isInvertible()) return inf;
+  const Eigen::MatrixXd X = lu.inverse();
+  const auto dev = detail::inverse_deviation_bound(AtS, X);  // ||A_S^{-T} - X||_2
+  if (!dev) return inf;
+  // y = X d + (A_S^{-T} - X) d: each entry within ||A_S^{-T} - X||_2 ||d||_2 of (X d)_k.
+  const IntervalVector Xd = multiply(X, detail::iv(d));
+  const Interval err = Interval(*dev) * Interval(detail::norm_upper(detail::iv(d)));
+  Interval total(0.0);
+  for (int k = 0; k < n; ++k) {
+    const Interval y = Xd[k] + Interval(-err.upper(), err.upper());
+    if (y.lower() < 0) return inf;  // a multiplier that may be negative certifies nothing
+    total += y * Interval(bS[k]);
+  }
+  return total.upper();
+}
+
 // Certified upper bounds of max d^T x over P for each direction (see the header for the method).
 std::vector<double> safe_maxima(const HPolytope& P, const std::vector<Eigen::VectorXd>& dirs,
                                 const char* what) {
   const int n = P.dimension();
   for (const auto& d : dirs)
     if (d.size() != n) throw InputError(std::string(what) + ": direction has the wrong dimension");
-  LinearProgram lp = make_lp(P);
-  // Phase 1: floating-point extent of every coordinate.
-  Eigen::VectorXd flo(n), fhi(n);
-  for (int j = 0; j < n; ++j)
-    for (Sense s : {Sense::minimize, Sense::maximize}) {
-      lp.set_objective_coordinate(j, s);
-      LpSolution sol = lp.solve();
-      if (sol.status == LpStatus::infeasible) {
-        lp.reset_basis();
-        sol = lp.solve_exact();
-        if (sol.status == LpStatus::infeasible) throw_empty(what);
-      }
-      const double v = sol.status == LpStatus::unbounded ? (s == Sense::minimize ? -inf : inf) : sol.objective;
-      (s == Sense::minimize ? flo : fhi)[j] = v;
-    }
   if (n == 0) {
     if (is_empty(P) == BoolInterval::yes) throw_empty(what);
     return std::vector<double>(dirs.size(), 0.0);
   }
-  // Phase 2: an artificial box X slightly larger than the float extent. If every certified
-  // coordinate bound over P ∩ X lies strictly inside X's finite faces, then P ⊂ X (P convex),
-  // and safe bounds over P ∩ X hold for P.
-  const Eigen::VectorXd width = (fhi - flo).unaryExpr([](double w) { return std::isfinite(w) ? w : 0.0; });
-  for (double factor : {1e-2, 1e-1, 1.0, 10.0}) {
-    Eigen::VectorXd xlo(n), xhi(n);
-    for (int j = 0; j < n; ++j) {
-      xlo[j] = std::isfinite(flo[j]) ? flo[j] - factor * width[j] - 1e-8 * (1 + std::abs(flo[j])) : -inf;
-      xhi[j] = std::isfinite(fhi[j]) ? fhi[j] + factor * width[j] + 1e-8 * (1 + std::abs(fhi[j])) : inf;
-      lp.set_variable_bounds(j, xlo[j], xhi[j]);
-    }
-    bool ok = true;
-    for (int j = 0; j < n && ok; ++j)
-      for (Sense s : {Sense::minimize, Sense::maximize}) {
-        if ((s == Sense::minimize && xlo[j] == -inf) || (s == Sense::maximize && xhi[j] == inf)) continue;
-        lp.set_objective_coordinate(j, s);
-        const LpSolution sol = lp.solve();
-        if (sol.status != LpStatus::optimal) {
-          ok = false;
-          break;
-        }
-        const double bound = lp.safe_bound(sol);
-        if (s == Sense::minimize ? !(bound > xlo[j]) : !(bound < xhi[j])) ok = false;
-      }
-    if (!ok) continue;
-    std::vector<double> out;
-    out.reserve(dirs.size());
-    for (const auto& d : dirs) {
-      lp.set_objective(d, Sense::maximize);
-      const LpSolution sol = lp.solve();
-      out.push_back(sol.status == LpStatus::optimal ? lp.safe_bound(sol) : inf);
-    }
-    return out;
-  }
-  return std::vector<double>(dirs.size(), inf);  // nothing certified: +inf is still a bound
+  LinearProgram lp = make_lp(P);
+  const detail::Extent e = detail::certified_extent(
+      lp,
+      [&](int& lps) {
+        ++lps;
+        return lp.solve();
+      },
+      dirs, true);
+  if (e.status == detail::ExtentStatus::empty) throw_empty(what);
+  if (e.status == detail::ExtentStatus::unknown) return std::vector<double>(dirs.size(), inf);
+  // Where the box argument certified nothing (P unbounded, or the direction is), a bounded
+  // direction can still be certified by its optimal vertex.
+  std::vector<double> out = e.maxima;
+  for (std::size_t k = 0; k < dirs.size(); ++k)
+    if (out[k] == inf) out[k] = vertex_dual_bound(P, lp, dirs[k]);
+  return out;
 }
 
 }  // namespace

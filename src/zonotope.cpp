@@ -514,8 +514,8 @@ Zonotope outer_zonotope(const FeasibleParameterSet& fps, const FpsZonotopeOption
                          " is unbounded by the data; give an initial zonotope");
     Z = Zonotope::from_box(r.box);
   }
-  const IntervalMatrix& Phi = fps.regressors();
-  const IntervalVector& Y = fps.outputs();
+  const auto Phi = fps.regressors();
+  const auto Y = fps.outputs();
   for (int t = 0; t < fps.size(); ++t) {
     const Eigen::VectorXd phi = lower(IntervalVector(Phi.row(t).transpose()));
     const auto next = try_intersect_strip(Z, phi, midpoint(Y[t]), radius(Y[t]));

@@ -11,6 +11,7 @@
 
 #include "sets/error.hpp"
 #include "sets/feasible_parameter_set.hpp"
+#include "sets/linear_program.hpp"
 
 namespace {
 
@@ -221,4 +222,143 @@ TEST(Pui, SeveralThreadsAtOnceGiveTheSameAnswers) {
       EXPECT_EQ(parallel[k].box[l].lower(), serial[k].box[l].lower());
       EXPECT_EQ(parallel[k].box[l].upper(), serial[k].box[l].upper());
     }
+}
+
+// ---------------------------------------------------------------- support in any direction
+
+namespace {
+
+// Rejection samples of the set (points that `contains` certifies), drawn in the PUI box.
+std::vector<Eigen::VectorXd> sample_set(const FeasibleParameterSet& fps, const IntervalVector& box, int tries,
+                                        std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<Eigen::VectorXd> out;
+  for (int k = 0; k < tries; ++k) {
+    Eigen::VectorXd x(fps.dimension());
+    for (int j = 0; j < x.size(); ++j) x[j] = box[j].lower() + U(rng) * (box[j].upper() - box[j].lower());
+    if (fps.contains(x) == sets::BoolInterval::yes) out.push_back(x);
+  }
+  return out;
+}
+
+// Certified lower end of d^T x (x exact doubles): the check must not be fooled by rounding.
+double dot_lower(const Eigen::VectorXd& d, const Eigen::VectorXd& x) {
+  sets::Interval s(0.0);
+  for (Eigen::Index j = 0; j < d.size(); ++j) s += sets::Interval(d[j]) * sets::Interval(x[j]);
+  return s.lower();
+}
+
+std::vector<Eigen::VectorXd> random_directions(int p, int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> G(0, 1);
+  std::vector<Eigen::VectorXd> dirs;
+  for (int k = 0; k < count; ++k) dirs.push_back(Eigen::VectorXd::NullaryExpr(p, [&] { return G(rng); }));
+  return dirs;
+}
+
+}  // namespace
+
+// Every point of the set (the true parameter and certified samples) lies below the support in
+// every direction, and the support is tight: the H-polytope of the same strips (certified the
+// same way, but with every row in one LP) gives the same values to LP tolerance.
+RC_GTEST_PROP(FpsSupport, BoundsEverySampledPointAndMatchesThePolytope, ()) {
+  const int p = *rc::gen::inRange(1, 5);
+  const int N = *rc::gen::inRange(p + 1, 300);
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  const Data d = make_data(p, N, seed);
+  const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  const auto dirs = random_directions(p, 12, seed + 2);
+  sets::PuiOptions opt;
+  opt.working_set = *rc::gen::arbitrary<bool>();
+  const sets::FpsSupport s = sets::support(fps, dirs, opt);
+  RC_ASSERT(!s.empty);
+  RC_ASSERT(s.guaranteed);
+  RC_ASSERT(s.maxima.size() == dirs.size());
+  std::vector<Eigen::VectorXd> points = sample_set(fps, s.box, 300, seed + 3);
+  points.push_back(d.theta);
+  RC_TAG(points.size() > 1 ? "sampled points" : "only the true parameter");
+  const std::vector<double> poly = sets::support(fps.orthant_polytope({}), dirs);
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    RC_ASSERT(std::isfinite(s.maxima[k]));
+    for (const auto& x : points) RC_ASSERT(dot_lower(dirs[k], x) <= s.maxima[k]);
+    RC_ASSERT(std::abs(s.maxima[k] - poly[k]) <= 1e-6 * (1 + std::abs(poly[k])));
+  }
+}
+
+// Interval regressors, every orthant: each orthant piece is an exact polyhedron, so the support
+// is the largest of the pieces' supports.
+RC_GTEST_PROP(FpsSupport, IntervalRegressorsTakeTheLargestOrthantPiece, ()) {
+  const int p = *rc::gen::inRange(1, 4);
+  const int N = *rc::gen::inRange(p + 2, 40);
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  const Data d = make_data(p, N, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_real_distribution<double> U(0, 1);
+  IntervalMatrix Phi(N, p);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    for (int j = 0; j < p; ++j) Phi(t, j) = sets::interval_around(d.Phi(t, j), 0.02 * U(rng));
+    Y[t] = sets::interval_around(d.y[t], d.delta[t]);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  const auto dirs = random_directions(p, 6, seed + 2);
+  const sets::FpsSupport s = sets::support(fps, dirs, {.orthants = sets::OrthantSelection::all});
+  RC_ASSERT(!s.empty);
+  RC_ASSERT(s.guaranteed);
+  std::vector<double> best(dirs.size(), -sets::inf);
+  for (const auto& o : sets::all_orthants(p)) {
+    const auto P = fps.orthant_polytope(o);
+    if (sets::is_empty(P) == sets::BoolInterval::yes) continue;
+    const auto v = sets::support(P, dirs);
+    for (std::size_t k = 0; k < dirs.size(); ++k) best[k] = std::max(best[k], v[k]);
+  }
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    RC_ASSERT(dot_lower(dirs[k], d.theta) <= s.maxima[k]);
+    RC_ASSERT(std::abs(s.maxima[k] - best[k]) <= 1e-6 * (1 + std::abs(best[k])));
+  }
+}
+
+TEST(FpsSupport, EmptySetAndBadDirections) {
+  Eigen::MatrixXd Phi(3, 1);
+  Phi << 1, 1, 1;
+  const auto fps = FeasibleParameterSet::from_data(Phi, Eigen::Vector3d(0, 1, 0), Eigen::Vector3d::Constant(0.1));
+  const auto s = sets::support(fps, {Eigen::VectorXd::Ones(1)});
+  EXPECT_TRUE(s.empty);
+  EXPECT_FALSE(s.falsification.samples.empty());
+  EXPECT_EQ(s.maxima[0], -sets::inf);
+  EXPECT_THROW(sets::support(fps, {Eigen::VectorXd::Ones(2)}), sets::InputError);
+}
+
+// An unbounded set: bounded directions keep a finite value only if certifiable; unbounded ones
+// are +inf, never a finite number.
+TEST(FpsSupport, UnboundedDirectionIsInfinite) {
+  Eigen::MatrixXd Phi(4, 2);
+  Phi << 1, 0, 1, 0, 2, 0, 1, 0;  // theta_2 is not constrained at all
+  const auto fps = FeasibleParameterSet::from_data(Phi, Eigen::Vector4d(1, 1, 2, 1), Eigen::Vector4d::Constant(0.1));
+  const auto s = sets::support(fps, {Eigen::Vector2d(0, 1), Eigen::Vector2d(1, 1)});
+  ASSERT_FALSE(s.empty);
+  EXPECT_EQ(s.maxima[0], sets::inf);
+  EXPECT_EQ(s.maxima[1], sets::inf);
+}
+
+// add_strip grows its storage geometrically; the set it builds is the same as from_data's.
+TEST(FeasibleParameterSet, AddStripBuildsTheSameSetAsFromData) {
+  const Data d = make_data(3, 5000, 11);
+  const auto bulk = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  FeasibleParameterSet grown(3);
+  for (int t = 0; t < 5000; ++t) grown.add_strip(d.Phi.row(t).transpose(), d.y[t], d.delta[t]);
+  ASSERT_EQ(grown.size(), bulk.size());
+  ASSERT_EQ(grown.regressors().rows(), 5000);
+  for (int t = 0; t < 5000; ++t) {
+    for (int j = 0; j < 3; ++j) ASSERT_EQ(grown.regressors()(t, j).lower(), bulk.regressors()(t, j).lower());
+    ASSERT_EQ(grown.outputs()[t].lower(), bulk.outputs()[t].lower());
+    ASSERT_EQ(grown.outputs()[t].upper(), bulk.outputs()[t].upper());
+  }
+  const auto a = sets::pui(grown), b = sets::pui(bulk);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_EQ(a.box[j].lower(), b.box[j].lower());
+    EXPECT_EQ(a.box[j].upper(), b.box[j].upper());
+  }
+  EXPECT_EQ(grown.contains(d.theta), bulk.contains(d.theta));
 }

@@ -169,3 +169,42 @@ TEST(Milp, SolvesKnapsackWithGapAndBound) {
   EXPECT_NEAR(s.objective, 9.0, 1e-9);  // a = b = 1
   EXPECT_NEAR(s.gap, 0.0, 1e-9);
 }
+
+// The LP on which GLPK's dual simplex cycled forever (safe-bound property above, RC_PARAMS
+// "seed=12636605580891481652", case 99: near-parallel rows 1-2 scaled by 1e5, rows 6-7 by 1e-5).
+// It hung CI until solve() capped the simplex iterations; now the cap trips (10 577 iterations)
+// and the recovery solves it. Pinned with its exact doubles: the solve must return (optimal, or a
+// NumericalError), and an optimal answer must still give a safe bound on the exact optimum.
+TEST(LinearProgram, DegenerateLpThatOnceCycledReturns) {
+  Eigen::MatrixXd A(7, 4);
+  A << 0x1.14dc49e59bb62p+19, -0x1.e7c7224f2cddbp+19, -0x1.4c3b8be054742p+17, 0x1.17e17c0a8e83fp+19,
+      0x1.14dc49fcd53edp+19, -0x1.e7c7227817d0ep+19, -0x1.4c3b8bfc33183p+17, 0x1.17e17c2208e8ep+19,
+      -0x1.66ed869912797p-5, 0x1.3d8baa47930e1p-4, -0x1.2e580afa9db7ap-5, 0x1.862cf8b743ab2p-6,
+      -0x1.a941fab8be054p+9, -0x1.0b02a3a0fd5c6p+9, -0x1.920fd5c5f02a4p+8, 0x1.d06ed8699127ap+9,
+      0x1.6ae2f8151d07ep+6, -0x1.e1a6449e59bb6p+2, -0x1.354741fab8bep+6, -0x1.bd5c5f02a3a1p+4,
+      0x1.70c0b977de00fp-18, -0x1.b27a5e9ba4126p-19, -0x1.9f1b3b68ad0ffp-18, 0x1.2da4daf5064acp-18,
+      0x1.b53ed159c75bep-18, 0x1.09ab074d3b8f5p-18, 0x1.d67432436ecddp-20, 0x1.785cf502bf0bp-19;
+  Eigen::VectorXd lo(7), hi(7), c(4);
+  lo << -0x1.941fab8be0554p+11, -0x1.b834c8b8b894ap+13, 0x1.23df25c599af2p-11, -0x1.9eb6a1847c91ap+9,
+      -0x1.c5ee79d30748cp+3, -0x1.f9ee80a00a39ep-22, -0x1.886339f8f496dp-18;
+  hi << 0x1.bf6c34c893cc2p+12, 0x1.2612797f98aedp+14, inf, 0x1.878dfcd53ecfep+9, 0x1.773b391c9bd12p+3,
+      0x1.afa7c09c42a4p-22, 0x1.a9accbb92e312p-19;
+  c << -0x1.b6db6db6db6dbp-2, -0x1.4924924924925p+1, 0x1p+3, -0x1.a924924924925p+3;
+  const Eigen::VectorXd xlo = Eigen::VectorXd::Constant(4, -10.0), xhi = Eigen::VectorXd::Constant(4, 10.0);
+  // The same calls in the same order as the property (GLPK's path depends on them).
+  LinearProgram lp(4);
+  for (int j = 0; j < 4; ++j) lp.set_variable_bounds(j, xlo[j], xhi[j]);
+  lp.add_rows(A, lo, hi);
+  lp.set_objective(c, Sense::minimize);
+  sets::LpSolution s;
+  try {
+    s = lp.solve();
+  } catch (const sets::NumericalError&) {
+    SUCCEED() << "reported as a numerical failure: acceptable, it returned";
+    return;
+  }
+  ASSERT_EQ(s.status, LpStatus::optimal);
+  const ExactLp exact = exact_optimum(A, lo, hi, xlo, xhi, c, Sense::minimize);
+  ASSERT_TRUE(exact.feasible && exact.bounded);
+  EXPECT_TRUE(leq(lp.safe_bound(s), exact.value));
+}

@@ -17,6 +17,7 @@
 #include <random>
 #include <sstream>
 
+#include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/hinf_bound.hpp"
 
@@ -135,6 +136,7 @@ Eigen::VectorXd column(const Csv& c, const std::string& name, const std::string&
 }
 
 // Writes through a temporary name in the same folder, then renames: complete or not at all.
+// (The PNG needs this form: gnuplot writes the temporary file itself.)
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& writer) {
   const fs::path p(path);
   const fs::path tmp = p.parent_path() / (p.filename().string() + ".tmp" + std::to_string(::getpid()));
@@ -260,7 +262,11 @@ int main(int argc, char** argv) {
   app.add_option("--y", ycol, "output column");
   app.add_option("--r", rcol, "reference column: instrumental variables for closed-loop data");
   app.add_flag("--quiet", quiet, "do not print the per-frequency table");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;  // usage errors exit 1 (docs/contributing.md)
+  }
 
   try {
     const bool builtin = data_path.empty();
@@ -468,11 +474,7 @@ int main(int argc, char** argv) {
       j["mean_unweighted_b_grid"] = mean(ubgrids);
       j["mean_unweighted_b"] = mean(ubs);
       j["b_grid_runs"] = bgrids;
-      write_atomically(json_path, [&](const std::string& tmp) {
-        std::ofstream o(tmp);
-        o << j.dump(1) << '\n';
-        if (!o) throw sets::NumericalError("cannot write " + tmp);
-      });
+      sets::write_file_atomically(json_path, j.dump(1) + "\n");
     }
     if (!plot_path.empty()) plot(plot_path, R, builtin ? &G0 : nullptr);
     return 0;

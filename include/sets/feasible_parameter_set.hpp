@@ -41,10 +41,12 @@ class FeasibleParameterSet {
   void add_strip(const IntervalVector& Phi, const Interval& Y);
 
   int dimension() const { return p_; }
-  int size() const { return static_cast<int>(Y_.size()); }
+  int size() const { return static_cast<int>(n_); }
   bool has_interval_regressors() const { return eiv_; }
-  const IntervalMatrix& regressors() const { return Phi_; }
-  const IntervalVector& outputs() const { return Y_; }
+  /// The samples' regressors (size() x dimension()) and outputs: views of the first size() rows
+  /// of the storage, which add_strip grows geometrically (amortised O(p) per strip).
+  Eigen::Ref<const IntervalMatrix> regressors() const { return Phi_.topRows(n_); }
+  Eigen::Ref<const IntervalVector> outputs() const { return Y_.head(n_); }
 
   /// Is theta in the set? `unknown` only when rounding cannot decide.
   BoolInterval contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const;
@@ -57,8 +59,9 @@ class FeasibleParameterSet {
  private:
   int p_;
   bool eiv_ = false;
-  IntervalMatrix Phi_;  // N x p
-  IntervalVector Y_;    // N
+  Eigen::Index n_ = 0;  // samples; the rows of Phi_ and Y_ beyond n_ are spare capacity
+  IntervalMatrix Phi_;  // capacity x p
+  IntervalVector Y_;    // capacity
 };
 
 enum class OrthantSelection {
@@ -106,6 +109,23 @@ struct PuiResult {
 /// Parameter uncertainty intervals: a box that contains the FPS (the part reached by the chosen
 /// orthants). With `safe`, each finite end is a rigorous bound; see docs/architecture.md.
 PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options = {});
+
+/// Upper bounds on the support function max { d^T theta : theta in the FPS } for each direction
+/// d (a minimum is minus the maximum over -d). One working-set LP per orthant answers all
+/// directions, warm-started, adding violated samples until none is; with `safe` every value is
+/// a Neumaier–Shcherbina bound over the artificial box that certifies the PUIs (see
+/// docs/architecture.md), so it holds for the whole set. +inf: unbounded or not certified.
+/// Interval regressors: the maximum over the orthants that pui() visits with the same options.
+struct FpsSupport {
+  std::vector<double> maxima;   // one per direction; -inf for an empty set
+  IntervalVector box;           // the PUIs found on the way
+  bool empty = false;           // the data falsify the model
+  bool guaranteed = false;      // every finite value certified by a safe bound
+  Falsification falsification;  // filled when empty
+  int lp_solves = 0;
+};
+FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions,
+                   const PuiOptions& options = {});
 
 /// The samples whose constraints conflict (support of the minimax-violation fit), or an empty
 /// list if a parameter satisfies them all.

@@ -1,0 +1,165 @@
+// The four steps of the Hakvoort–Van den Hof procedure on the app's built-in example (order-4
+// system with a lightly damped resonance, Kautz basis n = 40, nominal order 2, |W^-1|^2 of
+// degree 12): step 1 for stochastic and bounded noise, then steps 2–4 and the dense check.
+//   ./build/bench/hinf_bound_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "sets/hinf_bound.hpp"
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// The app's G0: poles 0.97 e^{+-0.6i} and 0.8 e^{+-0.9i}, numerator 0.05 z^-1 (1 + 0.5 z^-1).
+sets::RationalModel true_system() {
+  const double r1 = 0.97, w1 = 0.6, r2 = 0.8, w2 = 0.9;
+  const Eigen::Vector3d d1(1, -2 * r1 * std::cos(w1), r1 * r1), d2(1, -2 * r2 * std::cos(w2), r2 * r2);
+  sets::RationalModel G;
+  G.a = Eigen::VectorXd::Zero(5);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) G.a[i + k] += d1[i] * d2[k];
+  G.b = Eigen::VectorXd::Zero(3);
+  G.b << 0, 0.05, 0.025;
+  return G;
+}
+
+struct Data {
+  Eigen::VectorXd u, y;
+};
+
+// u uniform in [-1, 1] from 3000 samples before the record; noise e (Gaussian, or uniform with
+// |e| <= 0.02) through 1/(1 - 0.7 q^-1), as in the app.
+Data simulate(int N, bool bounded) {
+  const sets::RationalModel G = true_system();
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::normal_distribution<double> Nn(0, 1);
+  const int T = N + 3000;
+  Eigen::VectorXd u(T), e(T);
+  for (auto& x : u) x = U(rng);
+  for (auto& x : e) x = 0.02 * (bounded ? U(rng) : Nn(rng));
+  const Eigen::VectorXd y0 = sets::DiscreteTf{G.b, G.a, {}}.filter(u);
+  const Eigen::VectorXd v = sets::DiscreteTf{Eigen::VectorXd::Ones(1), Eigen::Vector2d(1, -0.7), {}}.filter(e);
+  return {u.tail(N), (y0 + v).tail(N)};
+}
+
+Eigen::VectorXd grid(int points) {
+  Eigen::VectorXd g(points);
+  for (int j = 0; j < points; ++j) g[j] = pi * (j + 0.5) / points;
+  return g;
+}
+
+const sets::OrthonormalBasis& basis() {
+  static const sets::OrthonormalBasis B = sets::OrthonormalBasis::kautz(std::polar(0.93, 0.66));
+  return B;
+}
+
+// The app's priors for this basis (its "priors:" line, rounded up): 1.2 x max_k |g0(k)| / 0.88^k
+// and 1.2 x the impulse-response envelope with rate 0.975.
+sets::HinfPriors priors() {
+  sets::HinfPriors p;
+  p.M = 0.992;
+  p.rho = 0.88;
+  p.u_bar = 1;
+  p.M_ic = 0.414;
+  p.rho_ic = 0.975;
+  return p;
+}
+
+sets::UncertaintyOptions uncertainty_options(bool bounded) {
+  sets::UncertaintyOptions o;
+  o.noise = bounded ? sets::NoiseModel::bounded : sets::NoiseModel::stochastic;
+  o.v_bar = 0.02 / 0.3;
+  return o;
+}
+
+void BM_UncertaintySet(benchmark::State& state) {
+  const int N = static_cast<int>(state.range(0));
+  const bool bounded = state.range(1) != 0;
+  const int points = bounded ? 100 : 150;
+  const Data d = simulate(N, bounded);
+  const Eigen::VectorXd w = grid(points);
+  int lps = 0;
+  for (auto _ : state) {
+    const sets::UncertaintySet S = sets::uncertainty_set(d.u, d.y, basis(), 40, w, priors(), uncertainty_options(bounded));
+    if (S.empty) state.SkipWithError("the priors are falsified");
+    lps = S.lp_solves;
+    benchmark::DoNotOptimize(S.regions.data());
+  }
+  state.counters["lp_solves"] = lps;
+  state.SetLabel(bounded ? "bounded noise, 100 frequencies" : "stochastic, 150 frequencies");
+}
+
+// Steps 2-4 on one stochastic uncertainty set (N = 2000, 150 frequencies).
+const sets::UncertaintySet& stochastic_set() {
+  static const sets::UncertaintySet S = [] {
+    const Data d = simulate(2000, false);
+    return sets::uncertainty_set(d.u, d.y, basis(), 40, grid(150), priors(), uncertainty_options(false));
+  }();
+  return S;
+}
+
+void BM_FitNominal(benchmark::State& state) {
+  const auto& S = stochastic_set();
+  sets::NominalOptions o;
+  o.polygon_sides = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const sets::NominalFit f = sets::fit_nominal(S, o);
+    benchmark::DoNotOptimize(f.max_error);
+  }
+}
+
+void BM_FitWeight(benchmark::State& state) {
+  const auto& S = stochastic_set();
+  const sets::NominalFit f = sets::fit_nominal(S);
+  const Eigen::VectorXd delta = sets::additive_error(S, f.model);
+  sets::WeightOptions o;
+  o.degree = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const sets::WeightFit W = sets::fit_weight(S.frequencies, delta, o);
+    benchmark::DoNotOptimize(W.max_gap);
+  }
+}
+
+void BM_ErrorBound(benchmark::State& state) {
+  const auto& S = stochastic_set();
+  const sets::NominalFit f = sets::fit_nominal(S);
+  const sets::WeightFit W = sets::fit_weight(S.frequencies, sets::additive_error(S, f.model));
+  for (auto _ : state) {
+    const sets::BoundResult b = sets::error_bound(S, f.model, W.h);
+    benchmark::DoNotOptimize(b.b);
+  }
+}
+
+// The app's Monte Carlo check of one run: ||W (G0 - Ghat)|| on 4096 frequencies.
+void BM_WeightedErrorCheck(benchmark::State& state) {
+  const auto& S = stochastic_set();
+  const sets::NominalFit f = sets::fit_nominal(S);
+  const sets::WeightFit W = sets::fit_weight(S.frequencies, sets::additive_error(S, f.model));
+  const sets::RationalModel G0 = true_system();
+  for (auto _ : state) {
+    const double e = sets::weighted_error([&](double w) { return G0(w); }, f.model, W.h);
+    benchmark::DoNotOptimize(e);
+  }
+}
+
+}  // namespace
+
+BENCHMARK(BM_UncertaintySet)
+    ->Args({1000, 0})
+    ->Args({2000, 0})
+    ->Args({10000, 0})
+    ->Args({1000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime();
+BENCHMARK(BM_FitNominal)->Arg(16)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+BENCHMARK(BM_FitWeight)->Arg(12)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+BENCHMARK(BM_ErrorBound)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+BENCHMARK(BM_WeightedErrorCheck)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+BENCHMARK_MAIN();
