@@ -225,7 +225,9 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
       so.max_abs = Eigen::VectorXd::Constant(1, 2 * lin.bound[0] + mu);
       so.epsilon = lin.epsilon * 1.1 + Eigen::VectorXd::Constant(l, 1e-9);
       so.initial_difference = false;
-      so.milp = MilpOptions{1.0, 1e-4, false};
+      // A node limit, not a short time limit, so the answer does not depend on the machine's load;
+      // the 10 s is only a guard.
+      so.milp = MilpOptions{10.0, 1e-4, false, 3000};
       so.start = lin.pi;
       try {
         const TvBoundResult sp = sparse_bound(data, so);

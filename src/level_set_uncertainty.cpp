@@ -134,7 +134,7 @@ FeasibleParameterSet regression_fps(const CanonicalRegression& r, const Eigen::V
   for (int e = 0; e < bounds.size(); ++e)
     if (!(bounds[e] >= 0) || !std::isfinite(bounds[e]))
       throw InputError("regression_fps: the bound of equation " + std::to_string(e) + " must be finite and >= 0");
-  // Collect the rows first: FeasibleParameterSet::add_strip grows its storage row by row.
+  // Collect the kept rows first and build the FPS in one go (from_data checks them together).
   std::vector<int> keep;
   if (falsified) falsified->clear();
   for (int k = 0; k < r.Psi.rows(); ++k) {

@@ -298,15 +298,30 @@ double LinearProgram::safe_bound(const LpSolution& solution) const {
 
 namespace {
 
+struct Milp_callback_data {
+  std::optional<Eigen::VectorXd> start;  // heuristic solution offered at the root
+  double best_bound = 0;                 // bound of the best open node, tracked as the tree moves
+  long node_limit = 0;                   // 0 = none
+  long nodes = 0;                        // largest node count seen
+};
+
 void milp_callback(glp_tree* tree, void* info) {
-  auto* data = static_cast<std::pair<void*, void*>*>(info);
-  auto* start = static_cast<std::optional<Eigen::VectorXd>*>(data->first);
-  auto* bound = static_cast<std::pair<double, bool>*>(data->second);
+  auto* data = static_cast<Milp_callback_data*>(info);
+  int active = 0, current = 0, total = 0;
+  glp_ios_tree_size(tree, &active, &current, &total);
+  data->nodes = std::max(data->nodes, static_cast<long>(total));
+  if (data->node_limit > 0) {
+    if (total > data->node_limit) {
+      glp_ios_terminate(tree);
+      return;
+    }
+  }
   switch (glp_ios_reason(tree)) {
     case GLP_IHEUR:
-      if (start->has_value() && glp_ios_curr_node(tree) == 1) {
-        std::vector<double> x(static_cast<std::size_t>((*start)->size()) + 1, 0.0);
-        for (Eigen::Index j = 0; j < (*start)->size(); ++j) x[static_cast<std::size_t>(j) + 1] = (**start)[j];
+      if (data->start.has_value() && glp_ios_curr_node(tree) == 1) {
+        const Eigen::VectorXd& x0 = *data->start;
+        std::vector<double> x(static_cast<std::size_t>(x0.size()) + 1, 0.0);
+        for (Eigen::Index j = 0; j < x0.size(); ++j) x[static_cast<std::size_t>(j) + 1] = x0[j];
         glp_ios_heur_sol(tree, x.data());
       }
       break;
@@ -314,10 +329,7 @@ void milp_callback(glp_tree* tree, void* info) {
     case GLP_IBINGO:
     case GLP_IPREPRO: {
       const int best = glp_ios_best_node(tree);
-      if (best != 0) {
-        bound->first = glp_ios_node_bound(tree, best);
-        bound->second = true;
-      }
+      if (best != 0) data->best_bound = glp_ios_node_bound(tree, best);
       break;
     }
     default:
@@ -348,9 +360,8 @@ MilpSolution LinearProgram::solve_milp(const MilpOptions& options,
   }
   if (glp_get_status(lp) != GLP_OPT)
     throw NumericalError("MILP relaxation has no optimal solution (unbounded or not solved)");
-  std::pair<double, bool> bound{glp_get_obj_val(lp), true};
-  std::optional<Eigen::VectorXd> start_copy = start;
-  std::pair<void*, void*> info{&start_copy, &bound};
+  if (options.node_limit < 0) throw InputError("LinearProgram::solve_milp: node_limit must be >= 0");
+  Milp_callback_data info{start, glp_get_obj_val(lp), options.node_limit};
   glp_iocp parm;
   glp_init_iocp(&parm);
   parm.msg_lev = options.verbose ? GLP_MSG_ON : GLP_MSG_OFF;
@@ -365,6 +376,7 @@ MilpSolution LinearProgram::solve_milp(const MilpOptions& options,
   parm.fp_heur = GLP_ON;
   rc = glp_intopt(lp, &parm);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.nodes = info.nodes;
   const int status = glp_mip_status(lp);
   if (rc != 0 && rc != GLP_ETMLIM && rc != GLP_EMIPGAP && rc != GLP_ESTOP)
     throw NumericalError("MILP solver failed (GLPK glp_intopt code " + std::to_string(rc) + ")");
@@ -374,12 +386,12 @@ MilpSolution LinearProgram::solve_milp(const MilpOptions& options,
   }
   if (status != GLP_OPT && status != GLP_FEAS) {
     out.status = MilpStatus::no_solution;
-    out.best_bound = bound.first;
+    out.best_bound = info.best_bound;
     return out;
   }
   out.status = (status == GLP_OPT && rc == 0) ? MilpStatus::optimal : MilpStatus::feasible;
   out.objective = glp_mip_obj_val(lp);
-  out.best_bound = out.status == MilpStatus::optimal ? out.objective : bound.first;
+  out.best_bound = out.status == MilpStatus::optimal ? out.objective : info.best_bound;
   out.gap = std::abs(out.objective - out.best_bound) / std::max(1.0, std::abs(out.objective));
   out.x.resize(impl_->n());
   for (int j = 0; j < impl_->n(); ++j) out.x[j] = glp_mip_col_val(lp, j + 1);

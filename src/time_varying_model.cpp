@@ -1,6 +1,7 @@
 #include "sets/time_varying_model.hpp"
 
 #include <string>
+#include <vector>
 
 #include "sets/error.hpp"
 
@@ -82,26 +83,38 @@ TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::Vecto
 BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
                                        const Eigen::MatrixXd& u) {
   check_signals(model, x0, u, "biaffine_regression");
+  return linearised_regression(model, x0, u, Eigen::MatrixXd::Zero(u.rows(), model.parameters()));
+}
+
+BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
+                                         const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi_bar) {
+  check_signals(model, x0, u, "linearised_regression");
   const int N = static_cast<int>(u.rows()), n = model.states(), l = model.outputs(), q = model.parameters();
+  if (pi_bar.rows() != N || pi_bar.cols() != q)
+    throw InputError("linearised_regression: the linearisation point is " + dims(pi_bar) + ", expected " +
+                     std::to_string(N) + " x " + std::to_string(q) + " (one row per input sample)");
+  if (!pi_bar.allFinite()) throw InputError("linearised_regression: the linearisation point holds a non-finite value");
   BiaffineRegression r;
-  r.zeta.resize(N + 1, n);
-  Eigen::VectorXd z = x0;
-  for (int k = 0; k <= N; ++k) {
-    r.zeta.row(k) = z.transpose();
-    if (k < N) z = model.A * z + model.B * u.row(k).transpose();
-  }
-  r.upsilon = stack_samples(r.zeta * model.C.transpose());
-  // Column block j: pi(j) enters xi(j+1) through M_j = P (I (x) zeta(j)) + D + Q (I (x) u(j)),
-  // then propagates with A, so block (k, j) = C A^(k-1-j) M_j for k > j.
+  r.pi_bar = pi_bar;
+  r.zeta = simulate(model, x0, u, pi_bar).x;
+  // A(k) = A + P (pi_bar(k) (x) I_n) = A + sum_i pi_bar_i(k) P_i (P_i: column block i of P).
+  std::vector<Eigen::MatrixXd> Ak(static_cast<std::size_t>(N), model.A);
+  for (int k = 0; k < N; ++k)
+    for (int i = 0; i < q; ++i)
+      if (pi_bar(k, i) != 0) Ak[static_cast<std::size_t>(k)] += pi_bar(k, i) * model.P.middleCols(i * n, n);
+  // Column block j: pi(j) enters x(j+1) through M_j = P (I (x) zeta(j)) + D + Q (I (x) u(j)),
+  // then propagates with A(j+1), A(j+2), ..., so block (k, j) = C A(k-1) ... A(j+1) M_j for k > j.
   r.xi = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N + 1) * l, static_cast<Eigen::Index>(N) * q);
   for (int j = 0; j < N; ++j) {
     Eigen::MatrixXd G = model.P * kron_identity(q, r.zeta.row(j).transpose()) + model.D +
                         model.Q * kron_identity(q, u.row(j).transpose());
     for (int k = j + 1; k <= N; ++k) {
       r.xi.block(static_cast<Eigen::Index>(k) * l, static_cast<Eigen::Index>(j) * q, l, q) = model.C * G;
-      if (k < N) G = model.A * G;
+      if (k < N) G = Ak[static_cast<std::size_t>(k)] * G;
     }
   }
+  r.upsilon = stack_samples(r.zeta * model.C.transpose());
+  if (!pi_bar.isZero(0)) r.upsilon -= r.xi * stack_samples(pi_bar);
   return r;
 }
 

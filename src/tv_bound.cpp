@@ -231,12 +231,13 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
                          "can reach (use eps from linf_bound and a larger max_abs)");
   if (s.status == MilpStatus::no_solution)
     throw NumericalError("sparse_bound: no integer solution within the time limit (" +
-                         std::to_string(o.milp.time_limit_s) + " s); give a start trajectory or more time");
+                         std::to_string(o.milp.time_limit_s) + " s) or node limit; give a start trajectory or more time");
   TvBoundResult r;
   r.status = s.status;
   r.objective = s.objective;
   r.best_bound = s.best_bound;
   r.gap = s.gap;
+  r.nodes = s.nodes;
   r.epsilon = o.epsilon;
   fill_result(data, s.x.head(static_cast<Eigen::Index>(N) * q), o.mu, r);
   r.seconds = seconds_since(t0);

@@ -1,6 +1,8 @@
 // The LP/MILP layer: statuses, warm starts, and safe bounds checked against CGAL's exact LP solver.
 
 #include <gtest/gtest.h>
+
+#include <random>
 #include <rapidcheck/gtest.h>
 
 #include <CGAL/Gmpzf.h>
@@ -168,6 +170,42 @@ TEST(Milp, SolvesKnapsackWithGapAndBound) {
   ASSERT_EQ(s.status, sets::MilpStatus::optimal);
   EXPECT_NEAR(s.objective, 9.0, 1e-9);  // a = b = 1
   EXPECT_NEAR(s.gap, 0.0, 1e-9);
+}
+
+TEST(Milp, NodeLimitStopsDeterministically) {
+  // A seeded 0-1 knapsack with two constraints that GLPK cannot close at the root. With a node
+  // limit the run stops with the same incumbent every time, whatever the machine's speed.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> w(20, 60);
+  const int n = 40;
+  LinearProgram lp(n);
+  Eigen::VectorXd c(n), a1(n), a2(n);
+  for (int j = 0; j < n; ++j) {
+    lp.set_variable_bounds(j, 0, 1);
+    lp.set_integer(j);
+    a1[j] = w(rng);
+    a2[j] = w(rng);
+    c[j] = a1[j] + a2[j] + w(rng) % 7;
+  }
+  lp.add_row(a1, -inf, 0.5 * a1.sum() + 0.5);
+  lp.add_row(a2, -inf, 0.5 * a2.sum() + 0.5);
+  lp.set_objective(c, Sense::maximize);
+  const auto full = lp.solve_milp({.time_limit_s = 120});
+  ASSERT_EQ(full.status, sets::MilpStatus::optimal);
+  ASSERT_GT(full.nodes, 20) << "the instance closes too early to test a node limit";
+  const long limit = full.nodes / 4;
+  const auto cut1 = lp.solve_milp({.time_limit_s = 120, .node_limit = limit});
+  const auto cut2 = lp.solve_milp({.time_limit_s = 120, .node_limit = limit});
+  EXPECT_NE(cut1.status, sets::MilpStatus::optimal);
+  EXPECT_LE(cut1.nodes, limit + 2);  // GLPK creates children in pairs
+  EXPECT_EQ(cut1.status, cut2.status);
+  EXPECT_EQ(cut1.objective, cut2.objective);
+  EXPECT_EQ(cut1.nodes, cut2.nodes);
+  if (cut1.status == sets::MilpStatus::feasible) {
+    EXPECT_LE(cut1.objective, full.objective + 1e-9);  // an incumbent, never better than the optimum
+    EXPECT_GE(cut1.best_bound, full.objective - 1e-6);  // and the tree's bound still holds
+  }
+  EXPECT_THROW(lp.solve_milp({.node_limit = -1}), sets::InputError);
 }
 
 // The LP on which GLPK's dual simplex cycled forever (safe-bound property above, RC_PARAMS

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "sets/exit_code.hpp"
 #include "sets/diagnosis.hpp"
 #include "sets/error.hpp"
 #include "sets/model_file.hpp"
@@ -227,14 +228,7 @@ int main(int argc, char** argv) {
     std::cout << diagnosis_text(d);
     if (!augmented_path.empty()) std::cout << "Augmented model written to " << augmented_path << "\n";
     return 0;
-  } catch (const InputError& e) {
-    std::cerr << "sets-diagnose: error: " << e.what() << "\n";
-    return 1;
-  } catch (const NumericalError& e) {
-    std::cerr << "sets-diagnose: numerical failure: " << e.what() << "\n";
-    return 3;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "sets-diagnose: error: " << e.what() << "\n";
-    return 1;
+  } catch (const std::exception& e) {
+    return report_failure("sets-diagnose", e);
   }
 }

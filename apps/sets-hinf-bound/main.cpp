@@ -17,6 +17,7 @@
 #include <random>
 #include <sstream>
 
+#include "sets/exit_code.hpp"
 #include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/hinf_bound.hpp"
@@ -478,14 +479,7 @@ int main(int argc, char** argv) {
     }
     if (!plot_path.empty()) plot(plot_path, R, builtin ? &G0 : nullptr);
     return 0;
-  } catch (const sets::InputError& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return 1;
-  } catch (const sets::NumericalError& e) {
-    std::cerr << "numerical failure: " << e.what() << '\n';
-    return 3;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return 1;
+    return sets::report_failure("sets-hinf-bound", e);
   }
 }

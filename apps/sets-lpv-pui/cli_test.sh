@@ -3,22 +3,7 @@
 # falsified data. Usage: cli_test.sh /path/to/sets-lpv-pui
 set -u
 app="$1"
-dir="$(mktemp -d)"
-trap 'rm -rf "$dir"' EXIT
-fail=0
-check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
-  local name="$1" want="$2" pattern="$3"
-  shift 4
-  "$@" >"$dir/out" 2>&1
-  local got=$?
-  if [[ $got -ne $want ]] || ! grep -qE "$pattern" "$dir/out"; then
-    echo "FAIL $name: exit $got (want $want), pattern '$pattern'"
-    sed 's/^/    /' "$dir/out" | head -20
-    fail=1
-  else
-    echo "ok   $name"
-  fi
-}
+source "$(dirname "$0")/../../tests/support/cli_check.sh"
 
 # Section IV's system, 200 samples, |eta|, |eps| <= 1e-3 (awk: no Python needed).
 awk 'BEGIN {

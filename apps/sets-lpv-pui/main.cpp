@@ -24,6 +24,7 @@
 #include <sstream>
 #include <thread>
 
+#include "sets/exit_code.hpp"
 #include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/lpv_model.hpp"
@@ -585,14 +586,7 @@ int main(int argc, char** argv) {
     else
       tables = {index.at(table)};
     return run_tables(tables, runs, seed, delta_e, options, threads, json_path);
-  } catch (const sets::InputError& e) {
-    std::cerr << "sets-lpv-pui: " << e.what() << '\n';
-    return 1;
-  } catch (const sets::UnsupportedError& e) {
-    std::cerr << "sets-lpv-pui: " << e.what() << '\n';
-    return 1;
-  } catch (const sets::NumericalError& e) {
-    std::cerr << "sets-lpv-pui: numerical failure: " << e.what() << '\n';
-    return 3;
+  } catch (const std::exception& e) {
+    return sets::report_failure("sets-lpv-pui", e);
   }
 }

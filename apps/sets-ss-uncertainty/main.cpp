@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "csv_columns.hpp"
+#include "sets/exit_code.hpp"
 #include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/level_set_uncertainty.hpp"
@@ -398,14 +399,7 @@ int main(int argc, char** argv) {
       return real_data(st);
     }
     return monte_carlo(st);
-  } catch (const sets::InputError& e) {
-    std::cerr << "sets-ss-uncertainty: error: " << e.what() << '\n';
-    return 1;
-  } catch (const sets::NumericalError& e) {
-    std::cerr << "sets-ss-uncertainty: numerical failure: " << e.what() << '\n';
-    return 3;
   } catch (const std::exception& e) {
-    std::cerr << "sets-ss-uncertainty: error: " << e.what() << '\n';
-    return 1;
+    return sets::report_failure("sets-ss-uncertainty", e);
   }
 }

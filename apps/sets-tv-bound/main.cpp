@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -19,9 +20,11 @@
 #include <vector>
 
 #include "crane.hpp"
+#include "sets/exit_code.hpp"
 #include "sets/atomic_file.hpp"
 #include "sets/error.hpp"
 #include "sets/tv_bound.hpp"
+#include "sets/tv_relinearisation.hpp"
 
 namespace {
 
@@ -141,9 +144,16 @@ int main(int argc, char** argv) {
   int only = -1;
   double scale = 1;
   std::string milp_eps = "linf";
+  std::string plant = "exact";
+  int relinearise = 0;
   app.add_option("--method", method, "linf, milp or both")->check(CLI::IsMember({"linf", "milp", "both"}));
   app.add_option("--table", table, "I, II, III or all")->check(CLI::IsMember({"I", "II", "III", "all"}));
   app.add_option("--time-limit", time_limit, "MILP time limit per case [s]")->check(CLI::PositiveNumber);
+  long node_limit = 0;
+  app.add_option("--node-limit", node_limit,
+                 "MILP branch-and-bound node limit per case (0 = none); unlike --time-limit the result "
+                 "does not depend on the machine's load, so runs are reproducible")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "noise seed");
   app.add_option("--json", json_path, "write the results as JSON to this file");
   app.add_option("--horizon", seconds, "simulated time [s] (N = horizon / 0.05)")->check(CLI::Range(1.0, 60.0));
@@ -163,6 +173,14 @@ int main(int argc, char** argv) {
                  "eps of the MILP: linf (from (8), the paper's) or oracle (the window norm of "
                  "y_m - Upsilon - Xi Pi at the true Pi; a diagnostic only)")
       ->check(CLI::IsMember({"linf", "oracle"}));
+  app.add_option("--plant", plant,
+                 "what generates y_m: exact (the crane (15), i.e. model (1)) or biaffine (the approximation "
+                 "(2) with the true pi, so nu = eta exactly and the methods' assumption holds)")
+      ->check(CLI::IsMember({"exact", "biaffine"}));
+  app.add_option("--relinearise", relinearise,
+                 "re-linearise (1) around the l-inf estimate this many times (sequential LP; not in the paper; "
+                 "0 = the paper's single expansion around pi = 0); the MILP uses the last linearisation")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
   try {
     app.parse(argc, argv);
@@ -170,13 +188,18 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 1;  // usage errors exit 1 (docs/contributing.md)
   }
   const bool do_linf = method != "milp", do_milp = method != "linf";
+  if (relinearise > 0 && plant == "biaffine") {
+    std::cerr << "sets-tv-bound: --relinearise needs --plant exact (the biaffine plant is already affine in pi)\n";
+    return 1;
+  }
   const int N = static_cast<int>(std::lround(seconds / kStep));
 
   try {
     nlohmann::json out;
-    out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"mu_rel", mu_rel},
+    out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"node_limit", node_limit}, {"mu_rel", mu_rel},
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
-                       {"scale", scale}, {"milp_eps", milp_eps}};
+                       {"scale", scale}, {"milp_eps", milp_eps},
+                       {"plant", plant}, {"relinearise", relinearise}};
     out["cases"] = nlohmann::json::array();
     std::vector<Case> selected = cases(table);
     if (only >= 0) {
@@ -186,7 +209,8 @@ int main(int argc, char** argv) {
       selected = {selected[static_cast<std::size_t>(only)]};
     }
     std::cout << "sets-tv-bound: overhead crane, N = " << N << " samples (h = 0.05 s), window 1/35 on 36 samples, "
-              << "seed " << seed << "\n"
+              << "seed " << seed << ", plant " << plant << (plant == "biaffine" ? " (approximation (2) + noise)" : " (crane (15))")
+              << ", re-linearisations " << relinearise << "\n"
               << "bounds rho = max_k |pi(k)| for (pi1, pi2, pi3) on (b, lambda, kappa); estimates, not guarantees\n\n";
     std::string current;
     for (Case& c : selected) {
@@ -201,7 +225,12 @@ int main(int argc, char** argv) {
       const sets::TimeVaryingModel model = sets::crane::model(c.lambda0, c.kappa0, c.b0);
       const Eigen::MatrixXd u = input(N), pi = perturbation(c, N);
       const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(3);
-      const auto sim = sets::simulate(model, x0, u, pi);
+      const sets::BiaffineRegression nominal_regression = sets::biaffine_regression(model, x0, u);
+      const Eigen::MatrixXd y_plant =
+          plant == "exact" ? sets::simulate(model, x0, u, pi).y
+                           : sets::unstack_samples(nominal_regression.upsilon +
+                                                       nominal_regression.xi * sets::stack_samples(pi),
+                                                   model.outputs());
       // White Gaussian noise scaled to the requested window norm.
       const sets::WindowNorm window = sets::WindowNorm::pulse(36, 1.0 / 35);
       std::mt19937_64 rng(seed);
@@ -210,7 +239,7 @@ int main(int argc, char** argv) {
       for (int k = 0; k <= N; ++k) eta[k] = normal(rng);
       eta *= c.noise / window(eta);
 
-      sets::TvBoundData data{sets::biaffine_regression(model, x0, u), sim.y + eta, {window}};
+      sets::TvBoundData data{nominal_regression, y_plant + eta, {window}};
       const Eigen::Vector3d nominal(c.b0, c.lambda0, c.kappa0);
       const Eigen::VectorXd F = nominal.cwiseInverse();
       const Eigen::VectorXd true_bound = pi.cwiseAbs().colwise().maxCoeff().transpose();
@@ -231,7 +260,29 @@ int main(int argc, char** argv) {
         lo.F = F;
         lo.G = F;
         lo.mu = mu_rel * nominal;
-        linf = sets::linf_bound(data, lo);
+        if (relinearise == 0) {
+          linf = sets::linf_bound(data, lo);
+        } else {
+          const auto t0 = std::chrono::steady_clock::now();
+          const auto rl = sets::relinearised_linf_bound(model, x0, u, data.y, data.windows, relinearise, lo);
+          linf = rl.linf;
+          linf.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          data = rl.data;  // the MILP runs on the last linearisation, with the last LP's eps
+          // nu(true pi) on the linearisation around the last-but-one estimate (the one (8) and (14) use).
+          const double relin_nu = window(sets::stack_samples(data.y) - data.regression.upsilon -
+                                         data.regression.xi * sets::stack_samples(pi));
+          nlohmann::json steps = nlohmann::json::array();
+          for (const auto& st : rl.steps)
+            steps.push_back({{"objective", st.objective}, {"epsilon", vec(st.epsilon)}, {"bound", vec(st.bound)},
+                             {"max_change", st.max_change}, {"exact_residual_window_norm", vec(st.exact_residual)}});
+          j["relinearisation"] = {{"true_residual_window_norm", relin_nu}, {"steps", steps}};
+          std::cout << "      relinearised " << relinearise << "x: ||nu(true pi)||_w " << std::setprecision(3) << relin_nu
+                    << " on the last linearisation; per LP: bound, eps, max |pi - pi_bar|, ||y - y(pi-hat)||_w exact\n";
+          for (std::size_t m = 0; m < rl.steps.size(); ++m)
+            std::cout << "        " << m << "  " << fmt(rl.steps[m].bound) << "  " << fmt(rl.steps[m].epsilon, 3) << "  "
+                      << std::setprecision(3) << rl.steps[m].max_change << "  " << fmt(rl.steps[m].exact_residual, 3)
+                      << "\n";
+        }
         if (do_linf) {
           const Eigen::VectorXd rms = sets::rms_tracking_error(linf.pi, pi);
           j["linf"] = {{"bound", vec(linf.bound)}, {"rms_tracking", vec(rms)}, {"seconds", linf.seconds},
@@ -246,32 +297,28 @@ int main(int argc, char** argv) {
         so.mu = mu_rel * nominal;
         so.max_abs = box_rel * nominal;
         so.epsilon = milp_eps == "oracle" ? Eigen::VectorXd::Constant(1, true_nu) : linf.epsilon;
+        if (milp_eps == "oracle" && relinearise > 0)
+          so.epsilon[0] = window(sets::stack_samples(data.y) - data.regression.upsilon -
+                                 data.regression.xi * sets::stack_samples(pi));
         so.formulation =
             formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
-        so.milp = {time_limit, gap, verbose};
+        so.milp = {time_limit, gap, verbose, node_limit};
         if (warm) so.start = linf.pi;
         const auto m = sets::sparse_bound(data, so);
         const Eigen::VectorXd rms = sets::rms_tracking_error(m.pi, pi);
         j["milp"] = {{"bound", vec(m.bound)}, {"rms_tracking", vec(rms)}, {"seconds", m.seconds}, {"gap", m.gap},
                      {"status", sets::to_string(m.status)}, {"objective", m.objective},
-                     {"best_bound", m.best_bound}, {"changes", m.changes.size()}};
+                     {"best_bound", m.best_bound}, {"changes", m.changes.size()}, {"nodes", m.nodes}};
         std::cout << "      milp  bound " << fmt(m.bound) << "  rms " << fmt(rms, 3) << "  jumps "
                   << m.changes.size() << "  obj " << m.objective << "  gap " << std::setprecision(3) << m.gap << "  " << std::fixed
-                  << std::setprecision(2) << m.seconds << " s (" << sets::to_string(m.status) << ")\n";
+                  << std::setprecision(2) << m.seconds << " s, " << m.nodes << " nodes (" << sets::to_string(m.status) << ")\n";
       }
       out["cases"].push_back(j);
       std::cout.flush();
     }
     if (!json_path.empty()) sets::write_file_atomically(json_path, out.dump(2) + "\n");
-  } catch (const sets::InputError& e) {
-    std::cerr << "sets-tv-bound: " << e.what() << '\n';
-    return 1;
-  } catch (const sets::NumericalError& e) {
-    std::cerr << "sets-tv-bound: numerical failure: " << e.what() << '\n';
-    return 3;
   } catch (const std::exception& e) {
-    std::cerr << "sets-tv-bound: " << e.what() << '\n';
-    return 1;
+    return sets::report_failure("sets-tv-bound", e);
   }
   return 0;
 }

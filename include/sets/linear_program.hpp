@@ -42,6 +42,9 @@ struct MilpOptions {
   double time_limit_s = 60;  // GLPK branch-and-cut stops here with its incumbent
   double relative_gap = 1e-6;
   bool verbose = false;
+  /// Stop after this many branch-and-bound nodes (0 = no limit). Unlike the wall-clock time
+  /// limit, the outcome does not depend on the machine's speed or load: tests use it.
+  long node_limit = 0;
 };
 
 struct MilpSolution {
@@ -50,6 +53,7 @@ struct MilpSolution {
   double best_bound = 0;  // bound from the branch-and-bound tree
   double gap = inf;       // |objective - best_bound| / max(1, |objective|)
   double seconds = 0;
+  long nodes = 0;         // branch-and-bound nodes created
   Eigen::VectorXd x;
 };
 

@@ -43,10 +43,15 @@ TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::Vecto
 /// The stacked biaffine regression Y = Upsilon + Xi Pi + V of equation (4), where
 /// Xi = Omega + Psi + Phi (the D-, P- and Q-terms of equation 3) and Pi = [pi(0); ...; pi(N-1)].
 /// Stacking: row k*l + j is output j at sample k; column k*q + i is parameter i at sample k.
+///
+/// linearised_regression generalises it to an expansion around a perturbation trajectory pi_bar
+/// (not in the paper): Y = Upsilon + Xi Pi + V still holds with Pi the absolute perturbation, but
+/// zeta is then the state of (1) under pi_bar and Upsilon = C zeta - Xi Pi_bar (the constant term).
 struct BiaffineRegression {
-  Eigen::MatrixXd zeta;     // nominal state trajectory, (N+1) x n
-  Eigen::VectorXd upsilon;  // C zeta(k) stacked, (N+1) l
+  Eigen::MatrixXd zeta;     // state trajectory at the linearisation point, (N+1) x n (nominal for (2))
+  Eigen::VectorXd upsilon;  // constant term, (N+1) l: C zeta(k) stacked for (2), C zeta - Xi Pi_bar otherwise
   Eigen::MatrixXd xi;       // (N+1) l x N q, block lower triangular (first block row is zero)
+  Eigen::MatrixXd pi_bar;   // linearisation point, N x q (zero for (2))
 
   int samples() const { return static_cast<int>(zeta.rows()) - 1; }  // N
 };
@@ -55,6 +60,15 @@ struct BiaffineRegression {
 /// Throws InputError on mismatched dimensions or an empty input.
 BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
                                        const Eigen::MatrixXd& u);
+
+/// The first-order expansion of (1) in pi around the trajectory pi_bar (N x q), an extension of (2)
+/// for re-linearisation (not in the paper). With x_bar = simulate(pi_bar).x:
+///   A(k) = A + P (pi_bar(k) (x) I_n),   M_k = P (I_q (x) x_bar(k)) + D + Q (I_q (x) u(k)),
+///   block (k, j) of Xi = C A(k-1) ... A(j+1) M_j  (k > j),   Upsilon = C x_bar - Xi Pi_bar,
+/// so y(pi) = Upsilon + Xi Pi + O(|pi - pi_bar|^2). pi_bar = 0 gives biaffine_regression exactly.
+/// Throws InputError on mismatched dimensions or an empty input.
+BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
+                                         const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi_bar);
 
 /// Stacks the rows of a signal matrix (one row per sample) into one column: [s(0); s(1); ...].
 Eigen::VectorXd stack_samples(const Eigen::MatrixXd& signal);

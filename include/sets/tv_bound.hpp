@@ -51,6 +51,7 @@ struct TvBoundResult {
   MilpStatus status = MilpStatus::optimal;
   double best_bound = 0;
   double gap = 0;
+  long nodes = 0;  // branch-and-bound nodes
 };
 
 struct LinfBoundOptions {

@@ -1,0 +1,41 @@
+#include "sets/tv_relinearisation.hpp"
+
+#include <string>
+
+#include "sets/error.hpp"
+
+namespace sets {
+
+TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
+                                             const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
+                                             const std::vector<WindowNorm>& windows, int iterations,
+                                             LinfBoundOptions options) {
+  if (iterations < 0)
+    throw InputError("relinearised_linf_bound: iterations is " + std::to_string(iterations) + ", must be >= 0");
+  TvRelinearisedResult r{{}, {biaffine_regression(model, x0, u), y, windows}, {}};
+  r.data.validate();
+  const WindowNormBall ball = r.data.ball();
+  if (options.h.size() == 0) {  // the paper's h, from the nominal model, fixed for every step
+    options.h = ball.norms(stack_samples(y) - r.data.regression.upsilon);
+    for (Eigen::Index j = 0; j < options.h.size(); ++j) {
+      if (options.h[j] == 0)
+        throw InputError("relinearised_linf_bound: output " + std::to_string(j) +
+                         " equals the nominal model exactly, so h = 1/||y_m - C zeta||_w is undefined; give h");
+      options.h[j] = 1.0 / options.h[j];
+    }
+  }
+  for (int m = 0; m <= iterations; ++m) {
+    if (m > 0) r.data.regression = linearised_regression(model, x0, u, r.linf.pi);
+    r.linf = linf_bound(r.data, options);
+    TvRelinearisationStep s;
+    s.objective = r.linf.objective;
+    s.epsilon = r.linf.epsilon;
+    s.bound = r.linf.bound;
+    s.max_change = (r.linf.pi - r.data.regression.pi_bar).cwiseAbs().maxCoeff();
+    s.exact_residual = ball.norms(stack_samples(y - simulate(model, x0, u, r.linf.pi).y));
+    r.steps.push_back(std::move(s));
+  }
+  return r;
+}
+
+}  // namespace sets
