@@ -13,32 +13,12 @@
 #include "sets/tv_bound.hpp"
 
 #include "../apps/sets-tv-bound/crane.hpp"
+#include "support/tv_fixtures.hpp"
 
 namespace {
 
-// A damped oscillator (the crane's pendulum, scaled down) with one parameter in A (through P),
-// one in B (through Q) and one additive (through D).
-sets::TimeVaryingModel small_model() {
-  const double h = 0.1;
-  sets::TimeVaryingModel m;
-  m.A.resize(2, 2);
-  m.A << 1, h, -h * 2.0, 1 - h * 0.5;
-  m.B = Eigen::Vector2d(0, h);
-  m.C = Eigen::RowVector2d(1, 0);
-  m.P = Eigen::MatrixXd::Zero(2, 6);
-  m.P(1, 0) = -h;  // pi1 * (-h x1): stiffness
-  m.Q = Eigen::MatrixXd::Zero(2, 3);
-  m.Q(1, 1) = h;   // pi2 * h u: gain
-  m.D = Eigen::MatrixXd::Zero(2, 3);
-  m.D(0, 2) = h;   // pi3: additive offset
-  return m;
-}
-
-Eigen::MatrixXd square_input(int N, int half_period) {
-  Eigen::MatrixXd u(N, 1);
-  for (int k = 0; k < N; ++k) u(k, 0) = (k / half_period) % 2 == 0 ? 1.0 : -1.0;
-  return u;
-}
+using sets::testing::square_input;
+sets::TimeVaryingModel small_model() { return sets::testing::small_oscillator(); }
 
 }  // namespace
 

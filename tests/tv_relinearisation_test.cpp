@@ -7,32 +7,12 @@
 
 #include "sets/error.hpp"
 #include "sets/tv_relinearisation.hpp"
+#include "support/tv_fixtures.hpp"
 
 namespace {
 
-// A damped oscillator with a parameter in every term: P (stiffness, also on the damping), Q (gain), D.
-sets::TimeVaryingModel model3() {
-  const double h = 0.1;
-  sets::TimeVaryingModel m;
-  m.A.resize(2, 2);
-  m.A << 1, h, -h * 2.0, 1 - h * 0.5;
-  m.B = Eigen::Vector2d(0, h);
-  m.C = Eigen::RowVector2d(1, 0);
-  m.P = Eigen::MatrixXd::Zero(2, 6);
-  m.P(1, 0) = -h;   // pi1 * (-h x1)
-  m.P(1, 5) = -h;   // pi3 * (-h x2)
-  m.Q = Eigen::MatrixXd::Zero(2, 3);
-  m.Q(1, 1) = h;    // pi2 * h u
-  m.D = Eigen::MatrixXd::Zero(2, 3);
-  m.D(0, 2) = h;    // pi3 additive
-  return m;
-}
-
-Eigen::MatrixXd square_input(int N, int half_period) {
-  Eigen::MatrixXd u(N, 1);
-  for (int k = 0; k < N; ++k) u(k, 0) = (k / half_period) % 2 == 0 ? 1.0 : -1.0;
-  return u;
-}
+using sets::testing::square_input;
+sets::TimeVaryingModel model3() { return sets::testing::small_oscillator(true); }
 
 Eigen::MatrixXd random_pi(int N, double size, unsigned seed) {
   std::mt19937 rng(seed);

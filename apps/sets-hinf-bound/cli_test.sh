@@ -4,22 +4,7 @@
 # problem. Usage: cli_test.sh /path/to/sets-hinf-bound
 set -u
 app="$1"
-dir="$(mktemp -d)"
-trap 'rm -rf "$dir"' EXIT
-fail=0
-check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
-  local name="$1" want="$2" pattern="$3"
-  shift 4
-  "$@" >"$dir/out" 2>&1
-  local got=$?
-  if [[ $got -ne $want ]] || ! grep -qE -e "$pattern" "$dir/out"; then
-    echo "FAIL $name: exit $got (want $want), pattern '$pattern'"
-    sed 's/^/    /' "$dir/out" | tail -20
-    fail=1
-  else
-    echo "ok   $name"
-  fi
-}
+source "$(dirname "$0")/../../tests/support/cli_check.sh"
 
 # A small FIR system y(t) = 0.5 u(t-1) + 0.25 u(t-2) + 0.125 u(t-3) + v(t), |v| <= 0.01, u in [-1, 1]
 # (awk: no Python needed). Priors for a 10-tap FIR basis: |g(k)| <= 1 * 0.88^k (the default rho) holds.
