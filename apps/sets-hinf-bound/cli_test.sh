@@ -22,6 +22,8 @@ good=(--data "$dir/good.csv" --u u --y y "${fir[@]}")
 
 check "good data, bounded noise" 0 "b = " -- "$app" "${good[@]}" --noise bounded --v-bar 0.01 --json "$dir/out.json"
 grep -q '"noise": "bounded"' "$dir/out.json" || { echo "FAIL json output"; fail=1; }
+# The data-based bound is reported as a number (nlohmann writes inf as null).
+grep -qE '"b_data": [0-9]' "$dir/out.json" || { echo "FAIL json b_data"; fail=1; }
 
 # Usage errors (CLI11) exit 1, not CLI11's own codes.
 check "unknown flag" 1 "--bogus" -- "$app" --bogus
