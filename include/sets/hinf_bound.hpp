@@ -10,6 +10,8 @@
 //   3. fit_weight       : |W^-1|^2 as a positive trigonometric polynomial >= delta^2 (LP), then a
 //                         spectral factor: W^-1 stable and minimum phase.
 //   4. error_bound      : b = max_j [delta_u(w_j) + lambda_j beta_j].
+//                         b_data: the same with the between-grid term from the set's coefficient
+//                         box and the tail prior (shrinks with N; for G0, not every G in S).
 //
 // Every bound is derived in docs/methods/hinf-bound.md. The stochastic variant holds with the
 // stated probability only asymptotically (Gaussian limit, estimated noise covariance); the
