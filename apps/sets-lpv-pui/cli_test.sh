@@ -39,5 +39,11 @@ check "unknown column" 1 "no column 'x'" -- "$app" --data "$dir/good.csv" --u x 
 check "bad basis" 1 "gamma" -- "$app" "${data[@]}" --a "gamma(lambda)" --b 1
 check "bad table" 1 "" -- "$app" --table V
 check "table I, one run, JSON" 0 "true theta in all PUIs: 1/1" -- "$app" --table I --runs 1 --threads 2 --json "$dir/t.json"
+# Table II diagnostics (docs/reproduction/cerone.md): the unguaranteed variant must say so; the
+# lagged-coefficient reading simulates and identifies the same model, so it must still cover theta.
+check "diagnostic regressor boxes are labelled" 0 "DIAGNOSTIC regressor boxes \(not guaranteed\)" -- \
+  "$app" --table II --runs 1 --regressor-noise scheduling
+check "bad --regressor-noise" 1 "" -- "$app" --table II --runs 1 --regressor-noise sometimes
+check "lagged coefficients cover theta" 0 "true theta in all PUIs: 3/3" -- "$app" --table II --runs 3 --coefficient-time lagged
 grep -q '"coverage": 1.0' "$dir/t.json" || { echo "FAIL table json"; fail=1; }
 exit $fail

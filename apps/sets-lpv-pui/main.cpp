@@ -93,9 +93,35 @@ struct Setting {
   double delta_e;
 };
 
+// Which measurement errors widen the regressor boxes (eqs. 18–26). `both` is the paper's method
+// and the only guaranteed choice; the others are diagnostics for docs/reproduction/cerone.md
+// (e.g. `scheduling` is eq. 25 read literally: min/max over eps only, w_{t-i} taken as y_{t-i}).
+enum class RegressorNoise { both, scheduling, output, none };
+RegressorNoise g_regressor_noise = RegressorNoise::both;
+// Diagnostic reading of eqs. (2)-(4): coefficient i taken at lambda_{t-i} (the shift acting on the
+// coefficient too) instead of at lambda_t (eq. 13, Section IV's A(q^-1) = 1 + (0.5 lambda_t) q^-1 ...),
+// in both the simulation and the identification. Done with alpha = 2: [lambda_{t-1}, lambda_{t-2}].
+bool g_lagged_coefficients = false;
+
+LpvModelStructure lagged_example() {
+  using sets::BasisFunction;
+  LpvModelStructure m;
+  m.alpha = 2;
+  m.a = {{BasisFunction::power(0, 1)}, {BasisFunction(), BasisFunction::power(1, 2)}};
+  m.b = {{}, {BasisFunction()}, {BasisFunction::power(1, 1), BasisFunction::power(1, 2)}};
+  return m;
+}
+Eigen::MatrixXd lagged(const Eigen::VectorXd& x) {
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(x.size(), 2);
+  for (Eigen::Index t = 1; t < x.size(); ++t) m(t, 0) = x[t - 1];
+  for (Eigen::Index t = 2; t < x.size(); ++t) m(t, 1) = x[t - 2];
+  return m;
+}
+
 RunResult simulate_and_bound(const Setting& s, int run, std::uint64_t seed, const sets::PuiOptions& options) {
   const TableSpec& spec = kTables[s.table];
-  const LpvModelStructure model = LpvModelStructure::cerone_regruto_example();
+  const LpvModelStructure model =
+      g_lagged_coefficients ? lagged_example() : LpvModelStructure::cerone_regruto_example();
   const Eigen::Map<const Eigen::VectorXd> theta(kTheta, 6);
   std::seed_seq seq{seed, static_cast<std::uint64_t>(s.table), static_cast<std::uint64_t>(s.level),
                     static_cast<std::uint64_t>(run)};
@@ -106,7 +132,8 @@ RunResult simulate_and_bound(const Setting& s, int run, std::uint64_t seed, cons
   Eigen::MatrixXd lambda(T, 1);
   for (int t = 0; t < T; ++t) u[t] = U(rng);
   for (int t = 0; t < T; ++t) lambda(t, 0) = spec.uniform ? U(rng) : std::sin(0.1 * (t + 1));
-  const Eigen::VectorXd w = sets::simulate_lpv(model, theta, u, lambda);
+  const Eigen::VectorXd w =
+      sets::simulate_lpv(model, theta, u, g_lagged_coefficients ? lagged(lambda.col(0)) : lambda);
   Eigen::VectorXd eta(T), eps(T);
   for (int t = 0; t < T; ++t) eta[t] = s.delta_e * U(rng);
   for (int t = 0; t < T; ++t) eps[t] = s.delta_e * U(rng);
@@ -116,6 +143,10 @@ RunResult simulate_and_bound(const Setting& s, int run, std::uint64_t seed, cons
   d.r = lambda + eps;
   d.delta_eta = Eigen::VectorXd::Constant(1, s.delta_e);
   d.delta_eps = Eigen::MatrixXd::Constant(1, 1, s.delta_e);
+  if (g_lagged_coefficients) {
+    d.r = lagged(d.r.col(0));
+    d.delta_eps = Eigen::MatrixXd::Constant(1, 2, s.delta_e);
+  }
 
   RunResult r;
   // SNRs (eqs. 43–44) over the N regression samples.
@@ -123,7 +154,19 @@ RunResult simulate_and_bound(const Setting& s, int run, std::uint64_t seed, cons
   r.snr_w = 10 * std::log10(w.tail(T - n0).squaredNorm() / eta.tail(T - n0).squaredNorm());
   r.snr_lambda = 10 * std::log10(lambda.col(0).tail(T - n0).squaredNorm() / eps.tail(T - n0).squaredNorm());
   const auto t0 = std::chrono::steady_clock::now();
-  const sets::LpvPuiResult res = sets::lpv_pui(model, d, options);
+  sets::LpvPuiResult res;
+  if (g_regressor_noise == RegressorNoise::both) {
+    res = sets::lpv_pui(model, d, options);
+  } else {
+    // Diagnostic: regressor boxes without one or both error sources; the output strip keeps Delta E.
+    LpvMeasurements dr = d;
+    if (g_regressor_noise != RegressorNoise::output) dr.delta_eta.setZero();
+    if (g_regressor_noise != RegressorNoise::scheduling) dr.delta_eps.setZero();
+    res.regression = sets::lpv_regression(model, dr);
+    for (Eigen::Index row = 0; row < res.regression.Y.size(); ++row)
+      res.regression.Y[row] = sets::interval_around(d.y[res.regression.time[static_cast<std::size_t>(row)]], s.delta_e);
+    res.pui = sets::pui(sets::FeasibleParameterSet::from_interval_data(res.regression.Phi, res.regression.Y), options);
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.empty = res.pui.empty;
   r.guaranteed = res.pui.guaranteed;
@@ -232,7 +275,10 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
     if (s.table != last_table) {
       std::cout << "\nTable " << spec.name << ": lambda " << (spec.uniform ? "uniform in [-1, 1]" : "= sin(0.1 t)")
                 << ", N = " << spec.N << ", " << runs << " runs, "
-                << (options.orthants == sets::OrthantSelection::all ? "all orthants" : "Remark-2 orthants") << '\n';
+                << (options.orthants == sets::OrthantSelection::all ? "all orthants" : "Remark-2 orthants")
+                << (g_regressor_noise == RegressorNoise::both ? ""
+                                                             : ", DIAGNOSTIC regressor boxes (not guaranteed)")
+                << '\n';
       last_table = s.table;
     }
     const Stats sw = stats(snr_w), sl = stats(snr_l);
@@ -251,6 +297,11 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
     js["lambda"] = spec.uniform ? "uniform" : "sin";
     js["delta_e"] = s.delta_e;
     js["runs"] = runs;
+    js["coefficient_time"] = g_lagged_coefficients ? "lagged" : "current";
+    js["regressor_noise"] = g_regressor_noise == RegressorNoise::both         ? "both"
+                            : g_regressor_noise == RegressorNoise::scheduling ? "scheduling"
+                            : g_regressor_noise == RegressorNoise::output     ? "output"
+                                                                              : "none";
     js["snr_w"] = sw.mean;
     js["snr_lambda"] = sl.mean;
     js["theta_true"] = std::vector<double>(kTheta, kTheta + 6);
@@ -484,6 +535,16 @@ int main(int argc, char** argv) {
   app.add_option("--orthants", orthants, "remark2 (least-squares orthant, extended at zero bounds) or all")
       ->check(CLI::IsMember({"remark2", "all"}));
   app.add_option("--json", json_path, "write the results as JSON");
+  std::string regressor_noise = "both";
+  app.add_option("--regressor-noise", regressor_noise,
+                 "errors that widen the regressor boxes: both (the paper's method, guaranteed); scheduling, "
+                 "output or none are NOT guaranteed diagnostics (docs/reproduction/cerone.md)")
+      ->check(CLI::IsMember({"both", "scheduling", "output", "none"}));
+  std::string coefficient_time = "current";
+  app.add_option("--coefficient-time", coefficient_time,
+                 "current: a_i, b_j at lambda_t (eq. 13, default); lagged: at lambda_{t-i}, lambda_{t-j} "
+                 "(diagnostic reading, simulation and identification)")
+      ->check(CLI::IsMember({"current", "lagged"}));
   app.add_option("--threads", threads, "worker threads (one FPS and LP per thread)")->check(CLI::Range(1u, 256u));
   app.add_option("--data", data_path, "CSV file with a header line: real-data mode");
   app.add_option("--u", ucol, "input column (name or 1-based number)");
@@ -500,6 +561,11 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 1;
   }
 
+  g_regressor_noise = regressor_noise == "scheduling" ? RegressorNoise::scheduling
+                      : regressor_noise == "output"   ? RegressorNoise::output
+                      : regressor_noise == "none"     ? RegressorNoise::none
+                                                      : RegressorNoise::both;
+  g_lagged_coefficients = coefficient_time == "lagged";
   sets::PuiOptions options;
   options.orthants = orthants == "all" ? sets::OrthantSelection::all : sets::OrthantSelection::remark2;
   try {
