@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
@@ -39,10 +40,42 @@ struct Case {
   bool sine = false;
 };
 
-// Input: a square wave of amplitude 1 and period 4 s (the paper's u_c is not given).
-Eigen::MatrixXd input(int N) {
+// Inputs, all within the same amplitude bound |u| <= 1 (the paper's u_c is only in its Fig. 1).
+//   square:    +-1, period 4 s (the default; the reproduction tables use it).
+//   prbs:      +-1 pseudo-random binary sequence: every kPrbsHold seconds the sign flips with
+//              probability 1/2 (std::mt19937_64 seeded with --input-seed), so no level lasts
+//              less than the hold time.
+//   multisine: sum of equal-amplitude sines at kMultisineFreq (rad/s, spanning the pendulum's
+//              resonance sqrt(lambda0) = 1.82 rad/s at the nominal 3.3) with Schroeder phases
+//              (low crest factor), scaled so that max_k |u(k)| = 1 on the horizon.
+inline constexpr double kPrbsHold = 0.25;  // [s], 5 samples
+inline constexpr double kMultisineFreq[] = {0.5, 1.0, 1.5, 1.8, 2.2, 3.0, 4.0};  // [rad/s]
+
+Eigen::MatrixXd input(const std::string& kind, int N, unsigned input_seed) {
   Eigen::MatrixXd u(N, 1);
-  for (int k = 0; k < N; ++k) u(k, 0) = (static_cast<int>(k * kStep / 2.0) % 2 == 0) ? 1.0 : -1.0;
+  if (kind == "square") {
+    for (int k = 0; k < N; ++k) u(k, 0) = (static_cast<int>(k * kStep / 2.0) % 2 == 0) ? 1.0 : -1.0;
+  } else if (kind == "prbs") {
+    const int hold = static_cast<int>(std::lround(kPrbsHold / kStep));
+    std::mt19937_64 rng(input_seed);
+    std::bernoulli_distribution flip(0.5);
+    double level = 1.0;
+    for (int k = 0; k < N; ++k) {
+      if (k > 0 && k % hold == 0 && flip(rng)) level = -level;
+      u(k, 0) = level;
+    }
+  } else {  // multisine
+    const int m = static_cast<int>(std::size(kMultisineFreq));
+    const double pi = 3.141592653589793;
+    for (int k = 0; k < N; ++k) {
+      double v = 0;
+      for (int i = 0; i < m; ++i)  // Schroeder phase phi_i = -pi i (i + 1) / m
+        v += std::sin(kMultisineFreq[i] * k * kStep - pi * i * (i + 1) / m);
+      u(k, 0) = v;
+    }
+    const double peak = u.cwiseAbs().maxCoeff();
+    if (peak > 0) u /= peak;
+  }
   return u;
 }
 
@@ -145,6 +178,8 @@ int main(int argc, char** argv) {
   double scale = 1;
   std::string milp_eps = "linf";
   std::string plant = "exact";
+  std::string input_kind = "square";
+  unsigned input_seed = 1;
   int relinearise = 0;
   app.add_option("--method", method, "linf, milp or both")->check(CLI::IsMember({"linf", "milp", "both"}));
   app.add_option("--table", table, "I, II, III or all")->check(CLI::IsMember({"I", "II", "III", "all"}));
@@ -177,6 +212,12 @@ int main(int argc, char** argv) {
                  "what generates y_m: exact (the crane (15), i.e. model (1)) or biaffine (the approximation "
                  "(2) with the true pi, so nu = eta exactly and the methods' assumption holds)")
       ->check(CLI::IsMember({"exact", "biaffine"}));
+  app.add_option("--input", input_kind,
+                 "crane input u, all |u| <= 1: square (period 4 s, the default), prbs (random +-1, minimum "
+                 "hold 0.25 s, --input-seed) or multisine (7 sines at 0.5-4 rad/s around the resonance "
+                 "sqrt(lambda0) = 1.8 rad/s, Schroeder phases)")
+      ->check(CLI::IsMember({"square", "prbs", "multisine"}));
+  app.add_option("--input-seed", input_seed, "seed of the prbs input (independent of the noise --seed)");
   app.add_option("--relinearise", relinearise,
                  "re-linearise (1) around the l-inf estimate this many times (sequential LP; not in the paper; "
                  "0 = the paper's single expansion around pi = 0); the MILP uses the last linearisation")
@@ -200,6 +241,19 @@ int main(int argc, char** argv) {
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
                        {"scale", scale}, {"milp_eps", milp_eps},
                        {"plant", plant}, {"relinearise", relinearise}};
+    nlohmann::json input_settings = {{"kind", input_kind}, {"amplitude_bound", 1.0}};
+    if (input_kind == "square") input_settings["period_s"] = 4.0;
+    if (input_kind == "prbs") {
+      input_settings["min_hold_s"] = kPrbsHold;
+      input_settings["seed"] = input_seed;
+      input_settings["generator"] = "std::mt19937_64, sign flip with probability 1/2 per hold";
+    }
+    if (input_kind == "multisine") {
+      input_settings["frequencies_rad_s"] = std::vector<double>(std::begin(kMultisineFreq), std::end(kMultisineFreq));
+      input_settings["phases"] = "Schroeder, -pi i (i + 1) / m";
+      input_settings["scaled_to_peak"] = 1.0;
+    }
+    out["settings"]["input"] = input_settings;
     out["cases"] = nlohmann::json::array();
     std::vector<Case> selected = cases(table);
     if (only >= 0) {
@@ -210,7 +264,7 @@ int main(int argc, char** argv) {
     }
     std::cout << "sets-tv-bound: overhead crane, N = " << N << " samples (h = 0.05 s), window 1/35 on 36 samples, "
               << "seed " << seed << ", plant " << plant << (plant == "biaffine" ? " (approximation (2) + noise)" : " (crane (15))")
-              << ", re-linearisations " << relinearise << "\n"
+              << ", re-linearisations " << relinearise << ", input " << input_kind << "\n"
               << "bounds rho = max_k |pi(k)| for (pi1, pi2, pi3) on (b, lambda, kappa); estimates, not guarantees\n\n";
     std::string current;
     for (Case& c : selected) {
@@ -223,7 +277,7 @@ int main(int argc, char** argv) {
         std::cout << "Table " << c.table << "\n";
       }
       const sets::TimeVaryingModel model = sets::crane::model(c.lambda0, c.kappa0, c.b0);
-      const Eigen::MatrixXd u = input(N), pi = perturbation(c, N);
+      const Eigen::MatrixXd u = input(input_kind, N, input_seed), pi = perturbation(c, N);
       const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(3);
       const sets::BiaffineRegression nominal_regression = sets::biaffine_regression(model, x0, u);
       const Eigen::MatrixXd y_plant =
@@ -251,9 +305,20 @@ int main(int argc, char** argv) {
                                     data.regression.xi * sets::stack_samples(pi));
       const double deviation = window(sets::stack_samples(data.y) - data.regression.upsilon);
       j["true_residual_window_norm"] = true_nu;
+      // How strongly each parameter shows in the output under (2): window norm of Xi Pi for a
+      // constant pi_i = true amplitude (others 0). Compare with the noise's window norm: a parameter
+      // whose effect is of the order of the noise cannot be told apart from it.
+      Eigen::Vector3d sensitivity;
+      for (int i = 0; i < 3; ++i) {
+        Eigen::MatrixXd p1 = Eigen::MatrixXd::Zero(N, 3);
+        p1.col(i).setConstant(c.amplitude[i]);
+        sensitivity[i] = window(nominal_regression.xi * sets::stack_samples(p1));
+      }
+      j["sensitivity_window_norm"] = vec(sensitivity);
       j["output_deviation_window_norm"] = deviation;
       std::cout << "  " << std::left << std::setw(40) << c.label << std::right << " true " << fmt(true_bound)
-                << "  ||y-Cz||_w " << std::setprecision(3) << deviation << "  ||nu(true pi)||_w " << true_nu << "\n";
+                << "  ||y-Cz||_w " << std::setprecision(3) << deviation << "  ||nu(true pi)||_w " << true_nu
+                << "  ||Xi pi_i||_w " << fmt(sensitivity, 3) << "\n";
       sets::TvBoundResult linf;
       if (do_linf || do_milp) {  // the MILP needs eps from (8)
         sets::LinfBoundOptions lo;
