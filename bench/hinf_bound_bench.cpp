@@ -15,18 +15,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// The app's G0: poles 0.97 e^{+-0.6i} and 0.8 e^{+-0.9i}, numerator 0.05 z^-1 (1 + 0.5 z^-1).
-sets::RationalModel true_system() {
-  const double r1 = 0.97, w1 = 0.6, r2 = 0.8, w2 = 0.9;
-  const Eigen::Vector3d d1(1, -2 * r1 * std::cos(w1), r1 * r1), d2(1, -2 * r2 * std::cos(w2), r2 * r2);
-  sets::RationalModel G;
-  G.a = Eigen::VectorXd::Zero(5);
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) G.a[i + k] += d1[i] * d2[k];
-  G.b = Eigen::VectorXd::Zero(3);
-  G.b << 0, 0.05, 0.025;
-  return G;
-}
+sets::RationalModel true_system() { return sets::hinf_example_system(); }
 
 struct Data {
   Eigen::VectorXd u, y;

@@ -29,21 +29,7 @@ using sets::InputError;
 namespace {
 constexpr double pi = std::numbers::pi;
 
-// ---------------------------------------------------------------- built-in true system
-// G0(z) = 0.05 z^-1 (1 + 0.5 z^-1) / [(1 - 2 r1 cos(w1) z^-1 + r1^2 z^-2)(1 - 2 r2 cos(w2) z^-1 + r2^2 z^-2)]
-// r1 = 0.97, w1 = 0.6 rad/sample: lightly damped resonance (damping ratio ~0.05);
-// r2 = 0.8,  w2 = 0.9 rad/sample: well damped second mode. Order 4.
-sets::RationalModel true_system() {
-  const double r1 = 0.97, w1 = 0.6, r2 = 0.8, w2 = 0.9;
-  const Eigen::Vector3d d1(1, -2 * r1 * std::cos(w1), r1 * r1), d2(1, -2 * r2 * std::cos(w2), r2 * r2);
-  sets::RationalModel G;
-  G.a = Eigen::VectorXd::Zero(5);
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) G.a[i + k] += d1[i] * d2[k];
-  G.b = Eigen::VectorXd::Zero(3);
-  G.b << 0, 0.05, 0.025;
-  return G;
-}
+sets::RationalModel true_system() { return sets::hinf_example_system(); }
 
 Eigen::VectorXd lfilter(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen::VectorXd& x) {
   sets::DiscreteTf f{b, a, {}};

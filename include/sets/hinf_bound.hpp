@@ -127,6 +127,12 @@ struct RationalModel {
   std::string to_string() const;
 };
 
+/// The built-in example's true system (app, bench and tests), order 4:
+/// G0(z) = 0.05 z^-1 (1 + 0.5 z^-1) / [(1 - 2 r1 cos(w1) z^-1 + r1^2 z^-2)(1 - 2 r2 cos(w2) z^-1 + r2^2 z^-2)]
+/// with r1 = 0.97, w1 = 0.6 rad/sample (a lightly damped resonance, damping ratio ~0.05) and
+/// r2 = 0.8, w2 = 0.9 rad/sample (a well damped second mode).
+RationalModel hinf_example_system();
+
 struct NominalOptions {
   int order = 2;                // denominator and numerator degree
   int polygon_sides = 16;       // K: |z| <= t replaced by K half-planes
