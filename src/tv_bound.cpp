@@ -91,6 +91,18 @@ WindowNormBall TvBoundData::ball() const {
   return WindowNormBall(std::move(w), samples() + 1);
 }
 
+Eigen::VectorXd paper_epsilon_weight(const TvBoundData& data) {
+  data.validate();
+  Eigen::VectorXd h = data.ball().norms(stack_samples(data.y) - data.regression.upsilon);
+  for (Eigen::Index j = 0; j < h.size(); ++j) {
+    if (h[j] == 0)
+      throw InputError("paper_epsilon_weight: output " + std::to_string(j) +
+                       " equals the nominal model exactly, so h = 1/||y_m - C zeta||_w is undefined; give h or epsilon");
+    h[j] = 1.0 / h[j];
+  }
+  return h;
+}
+
 TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& options) {
   data.validate();
   const auto t0 = Clock::now();
@@ -109,13 +121,7 @@ TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& option
   }
   Eigen::VectorXd h = options.h;
   if (!fixed_eps && h.size() == 0) {
-    h = ball.norms(offset);
-    for (Eigen::Index j = 0; j < h.size(); ++j) {
-      if (h[j] == 0)
-        throw InputError("linf_bound: output " + std::to_string(j) +
-                         " equals the nominal model exactly, so h = 1/||y_m - C zeta||_w is undefined; give h or epsilon");
-      h[j] = 1.0 / h[j];
-    }
+    h = paper_epsilon_weight(data);
   } else if (!fixed_eps && (h.size() != l || !h.allFinite() || (h.array() < 0).any())) {
     throw InputError("linf_bound: h needs one finite non-negative weight per output");
   }

@@ -15,15 +15,9 @@ TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, cons
   TvRelinearisedResult r{{}, {biaffine_regression(model, x0, u), y, windows}, {}};
   r.data.validate();
   const WindowNormBall ball = r.data.ball();
-  if (options.h.size() == 0) {  // the paper's h, from the nominal model, fixed for every step
-    options.h = ball.norms(stack_samples(y) - r.data.regression.upsilon);
-    for (Eigen::Index j = 0; j < options.h.size(); ++j) {
-      if (options.h[j] == 0)
-        throw InputError("relinearised_linf_bound: output " + std::to_string(j) +
-                         " equals the nominal model exactly, so h = 1/||y_m - C zeta||_w is undefined; give h");
-      options.h[j] = 1.0 / options.h[j];
-    }
-  }
+  // The paper's h, from the nominal model, fixed for every step (not with a known eps, which
+  // replaces the h-term).
+  if (options.h.size() == 0 && options.epsilon.size() == 0) options.h = paper_epsilon_weight(r.data);
   for (int m = 0; m <= iterations; ++m) {
     if (m > 0) r.data.regression = linearised_regression(model, x0, u, r.linf.pi);
     r.linf = linf_bound(r.data, options);

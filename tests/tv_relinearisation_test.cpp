@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "sets/error.hpp"
@@ -117,6 +118,29 @@ TEST(TvRelinearisation, ZeroIterationsIsTheLinfMethod) {
   EXPECT_LT((r.linf.pi - direct.pi).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_NEAR(r.steps[0].objective, direct.objective, 1e-9);
   EXPECT_EQ(r.data.regression.pi_bar.cwiseAbs().maxCoeff(), 0.0);
+}
+
+// With a known noise bound (LinfBoundOptions::epsilon) the sequence must not add the paper's
+// h-term (linf_bound rejects both at once); on data of the nominal model plus noise inside that
+// bound every step then gives Pi-hat = 0. The paper's weight is linf_bound's default.
+TEST(TvRelinearisation, KnownNoiseBoundIsPassedThrough) {
+  const auto m = model3();
+  const int N = 30;
+  const Eigen::MatrixXd u = square_input(N, 7);
+  const Eigen::VectorXd x0 = Eigen::Vector2d::Zero();
+  const auto w = sets::WindowNorm::pulse(6, 1.0 / 6);
+  Eigen::MatrixXd y = sets::simulate(m, x0, u, Eigen::MatrixXd::Zero(N, 3)).y;
+  for (int k = 0; k <= N; ++k) y(k, 0) += 0.01 * std::sin(1.3 * k);
+  const double noise = w(y.col(0) - sets::simulate(m, x0, u, Eigen::MatrixXd::Zero(N, 3)).y.col(0));
+  sets::LinfBoundOptions o;
+  o.epsilon = Eigen::VectorXd::Constant(1, noise * (1 + 1e-9));
+  const auto r = sets::relinearised_linf_bound(m, x0, u, y, {w}, 2, o);
+  ASSERT_EQ(r.steps.size(), 3u);
+  EXPECT_LT(r.linf.pi.cwiseAbs().maxCoeff(), 1e-6);
+  const sets::TvBoundData data{sets::biaffine_regression(m, x0, u), y, {w}};
+  sets::LinfBoundOptions paper;
+  paper.h = sets::paper_epsilon_weight(data);
+  EXPECT_NEAR(sets::linf_bound(data, paper).objective, sets::linf_bound(data).objective, 1e-12);
 }
 
 // Noise-free data from a large step in a parameter that multiplies the state (P). With a heavy eps

@@ -70,6 +70,10 @@ struct LinfBoundOptions {
   Eigen::VectorXd mu;
 };
 
+/// The paper's weight of eps in (8): h_j = 1 / ||y_m,j - (C zeta)_j||_w, the default of
+/// LinfBoundOptions::h. Throws InputError if an output equals the nominal model exactly.
+Eigen::VectorXd paper_epsilon_weight(const TvBoundData& data);
+
 /// Equation (8): min ||(I (x) F) Pi||_inf + ||(I (x) G) Delta Pi||_inf + h^T eps
 /// s.t. W |Y_m - Upsilon - Xi Pi| <= 1 (x) eps, as one LP (eps fixed and no h-term when
 /// options.epsilon is given). Throws InputError on bad input, EmptySetError if no perturbation
