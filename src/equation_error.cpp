@@ -1,5 +1,7 @@
 #include "sets/equation_error.hpp"
 
+#include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/trim.hpp>
 #include <muParser.h>
 
 #include <algorithm>
@@ -31,10 +33,7 @@ std::set<std::string> used_symbols(const std::string& text) {
   return out;
 }
 
-std::string trimmed(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
-  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
-}
+std::string trimmed(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t")); }
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "sets/lpv_model.hpp"
 
+#include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/trim.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -173,12 +175,7 @@ std::string BasisFunction::name(int alpha) const {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t");
-  if (a == std::string::npos) return "";
-  const auto b = s.find_last_not_of(" \t");
-  return s.substr(a, b - a + 1);
-}
+std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t")); }
 
 int parse_variable(const std::string& v, int alpha, const std::string& text) {
   std::string digits;

@@ -1,5 +1,7 @@
 #include "sets/physics_catalogue.hpp"
 
+#include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/trim.hpp>
 #include <algorithm>
 #include <cmath>
 #include <regex>
@@ -63,11 +65,7 @@ std::string fresh_name(const ModelFile& model, const std::string& wanted) {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\n");
-  const auto e = s.find_last_not_of(" \t\n");
-  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
+std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t\n")); }
 
 bool uses(const std::string& text, const std::string& symbol) { return replace_symbol(text, symbol, "\x01") != text; }
 

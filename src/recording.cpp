@@ -1,5 +1,7 @@
 #include "sets/recording.hpp"
 
+#include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/trim.hpp>
 #include <matio.h>
 
 #include <charconv>
@@ -39,11 +41,8 @@ void Recording::add(const std::string& name, std::vector<double> values) {
 
 namespace {
 
-std::string trim(std::string s) {
-  const auto b = s.find_first_not_of(" \t\r\"");
-  const auto e = s.find_last_not_of(" \t\r\"");
-  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
+// A CSV field without surrounding blanks, carriage returns or quotes.
+std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t\r\"")); }
 
 }  // namespace
 
