@@ -9,7 +9,7 @@
 #include <numbers>
 #include <random>
 
-#include "sets/hinf_bound.hpp"
+#include "sets/methods/hinf_bound/hinf_bound.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "sets/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_model.hpp"
 
 namespace {
 

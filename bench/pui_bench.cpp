@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "sets/feasible_parameter_set.hpp"
+#include "sets/fps/feasible_parameter_set.hpp"
 
 namespace {
 

@@ -8,10 +8,10 @@
 #include <numbers>
 #include <random>
 
-#include "sets/ellipsoid.hpp"
-#include "sets/hpolytope.hpp"
-#include "sets/vpolytope.hpp"
-#include "sets/zonotope.hpp"
+#include "sets/domains/ellipsoid.hpp"
+#include "sets/domains/hpolytope.hpp"
+#include "sets/domains/vpolytope.hpp"
+#include "sets/domains/zonotope.hpp"
 
 namespace {
 

@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "sets/level_set_uncertainty.hpp"
-#include "sets/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
+#include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 
 namespace {
 

@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "sets/tv_bound.hpp"
+#include "sets/methods/tv_bound/tv_bound.hpp"
 
-#include "../apps/sets-tv-bound/crane.hpp"
+#include "sets/examples/crane.hpp"
 
 namespace {
 

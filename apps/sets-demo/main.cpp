@@ -8,7 +8,7 @@
 #include <iostream>
 #include <random>
 
-#include "sets/feasible_parameter_set.hpp"
+#include "sets/fps/feasible_parameter_set.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"sets-demo: guaranteed PUIs of a simulated ARX system with bounded noise"};

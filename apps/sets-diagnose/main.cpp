@@ -10,12 +10,12 @@
 #include <iostream>
 #include <sstream>
 
-#include "sets/exit_code.hpp"
-#include "sets/diagnosis.hpp"
-#include "sets/error.hpp"
-#include "sets/model_file.hpp"
-#include "sets/recording.hpp"
-#include "sets/synthetic_plants.hpp"
+#include "sets/core/exit_code.hpp"
+#include "sets/diagnosis/diagnosis.hpp"
+#include "sets/core/error.hpp"
+#include "sets/models/model_file.hpp"
+#include "sets/data/recording.hpp"
+#include "sets/examples/synthetic_plants.hpp"
 
 namespace fs = std::filesystem;
 using namespace sets;

@@ -17,10 +17,10 @@
 #include <random>
 #include <sstream>
 
-#include "sets/exit_code.hpp"
-#include "sets/atomic_file.hpp"
-#include "sets/error.hpp"
-#include "sets/hinf_bound.hpp"
+#include "sets/core/exit_code.hpp"
+#include "sets/core/atomic_file.hpp"
+#include "sets/core/error.hpp"
+#include "sets/methods/hinf_bound/hinf_bound.hpp"
 
 namespace fs = std::filesystem;
 using cd = std::complex<double>;

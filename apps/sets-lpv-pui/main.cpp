@@ -24,10 +24,10 @@
 #include <sstream>
 #include <thread>
 
-#include "sets/exit_code.hpp"
-#include "sets/atomic_file.hpp"
-#include "sets/error.hpp"
-#include "sets/lpv_model.hpp"
+#include "sets/core/exit_code.hpp"
+#include "sets/core/atomic_file.hpp"
+#include "sets/core/error.hpp"
+#include "sets/methods/lpv_pui/lpv_model.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sets/error.hpp"
+#include "sets/core/error.hpp"
 
 namespace {
 

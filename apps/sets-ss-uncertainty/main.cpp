@@ -20,11 +20,11 @@
 #include <thread>
 
 #include "csv_columns.hpp"
-#include "sets/exit_code.hpp"
-#include "sets/atomic_file.hpp"
-#include "sets/error.hpp"
-#include "sets/level_set_uncertainty.hpp"
-#include "sets/propagator_identification.hpp"
+#include "sets/core/exit_code.hpp"
+#include "sets/core/atomic_file.hpp"
+#include "sets/core/error.hpp"
+#include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
+#include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 
 namespace {
 

@@ -20,12 +20,12 @@
 #include <string>
 #include <vector>
 
-#include "crane.hpp"
-#include "sets/exit_code.hpp"
-#include "sets/atomic_file.hpp"
-#include "sets/error.hpp"
-#include "sets/tv_bound.hpp"
-#include "sets/tv_relinearisation.hpp"
+#include "sets/examples/crane.hpp"
+#include "sets/core/exit_code.hpp"
+#include "sets/core/atomic_file.hpp"
+#include "sets/core/error.hpp"
+#include "sets/methods/tv_bound/tv_bound.hpp"
+#include "sets/methods/tv_bound/tv_relinearisation.hpp"
 
 namespace {
 

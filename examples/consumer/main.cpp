@@ -1,5 +1,5 @@
 // Computes the PUIs of a tiny bounded-error problem through the installed library.
-#include <sets/feasible_parameter_set.hpp>
+#include <sets/sets.hpp>  // the umbrella header: every public header
 
 #include <iostream>
 

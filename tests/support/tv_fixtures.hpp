@@ -3,7 +3,7 @@
 
 #include <Eigen/Core>
 
-#include "sets/time_varying_model.hpp"
+#include "sets/models/time_varying_model.hpp"
 
 namespace sets::testing {
 

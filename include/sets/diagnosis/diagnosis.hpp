@@ -1,0 +1,128 @@
+#pragma once
+// Discrepancy diagnosis: calibrate a nominal model, locate where it fails (time windows,
+// operating regions, frequency band, parameters that would have to vary), name the missing
+// physics from the catalogue (competing hypotheses, fewest terms, judged on validation), add it,
+// and give the new parameters with uncertainty intervals. See docs/methods/diagnosis.md.
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sets/models/model_file.hpp"
+#include "sets/data/recording.hpp"
+
+namespace sets {
+
+struct DiagnosisOptions {
+  int screening_substeps = 0;   // RK4 substeps while hypotheses are calibrated; 0: the fewest of
+                                // 1, 2, 5 whose fits agree with final_substeps within 0.2 points
+  int final_substeps = 10;      // RK4 substeps for the reported fits
+  int max_effects = 3;
+  double min_cost_reduction = 0.10;  // a hypothesis must remove >= 10 % of the squared misfit
+  double sparsity_tolerance = 1.25;  // a simpler hypothesis wins if its misfit is within this factor
+  double noise_floor_factor = 1.5;   // stop when the misfit is below this x the noise's own misfit (0: never)
+  int threads = 2;
+  int varying_segments = 0;          // segments of the time-varying estimates; 0: N/500 within [10, 30]
+  std::function<void(const std::string&)> progress;  // one line per stage (optional)
+};
+
+struct MismatchWindow {
+  std::string output;
+  double start = 0, end = 0;   // s
+  double rms = 0;              // residual RMS inside, output units
+  bool falsified = false;      // no value of the free parameters keeps |residual| <= bound inside
+};
+
+struct MismatchRegion {
+  std::string variable;
+  std::string description;     // e.g. "near zero v"
+  double residual_share = 0;   // share of the squared residual inside the region
+  double sample_share = 0;     // share of the samples inside the region
+};
+
+/// One segment of an estimated parameter trajectory.
+struct SegmentValue {
+  double start = 0, end = 0;   // s
+  double value = 0;            // parameter value held over the segment
+};
+
+/// Which parameter would have to vary over time, and when (Salehpour–Johansson estimates on the
+/// calibrated model, the parameter perturbed piecewise constant over segments; see
+/// docs/methods/diagnosis.md). These are estimates, not guaranteed bounds.
+struct VaryingParameter {
+  std::string name;
+  double value = 0;            // calibrated constant value
+  double lo = 0, hi = 0;       // range of the estimated trajectory
+  double explained = 0;        // share of the residual's window-norm bound (h^T eps of the l-inf
+                               // method) the trajectory removes
+  double explained_squared = 0;  // share of the squared residual it removes
+  std::vector<std::pair<double, double>> when;  // time windows holding the largest jumps
+  double bound = 0;            // rho-hat: largest |trajectory - value| (l-inf estimate), parameter units
+  std::vector<SegmentValue> trajectory;  // the estimate reported (sparse when it was solved)
+  std::vector<std::pair<double, double>> jumps;  // (time of the segment start, size), parameter units
+  std::string method;          // "sparse_bound" or "linf_bound"
+};
+
+struct FrequencyBand {
+  std::string output;
+  double lo_hz = 0, hi_hz = 0, peak_hz = 0;  // 80 % of the residual energy lies in [lo, hi]
+};
+
+struct EffectParameter {
+  std::string name;
+  double estimate = 0;
+  double lo = 0, hi = 0;            // guaranteed PUI under the stated bounds: the intersection of the
+                                    // output-error and equation-error PUIs (the output-error one alone
+                                    // when no equation-error PUI was built); +-inf if unbounded
+  double oe_lo = 0, oe_hi = 0;      // PUI of the output error linearised at the estimate
+  bool has_ee = false;              // an equation-error PUI was built (sets/equation_error.hpp)
+  double ee_lo = 0, ee_hi = 0;
+  double stat_lo = 0, stat_hi = 0;  // 95 % statistical interval (white-noise assumption)
+};
+
+struct DiagnosedEffect {
+  std::string name, equation, term, evidence;
+  std::vector<EffectParameter> parameters;
+  double cost_reduction_estimation = 0;  // share of the misfit removed when it was added
+  double cost_reduction_validation = 0;
+};
+
+struct Diagnosis {
+  std::vector<std::string> outputs;      // recording columns of the outputs
+  ModelFile nominal, augmented;          // calibrated nominal and augmented model files
+  std::vector<std::string> free_nominal;
+  std::vector<double> fit_start_estimation, fit_start_validation;  // file values, before calibration
+  std::vector<double> fit_nominal_estimation, fit_nominal_validation;
+  std::vector<double> fit_augmented_estimation, fit_augmented_validation;
+  bool has_validation = false;
+  std::vector<MismatchWindow> windows;
+  std::vector<MismatchRegion> regions;
+  std::vector<VaryingParameter> varying;
+  std::vector<FrequencyBand> bands;
+  std::vector<DiagnosedEffect> effects;  // ranked, most important first; empty: nothing missing
+  bool nothing_missing = false;          // nominal explains the data to within the noise
+  std::string verdict;                   // one sentence
+  std::vector<double> error_bound;       // per output, used for windows and PUIs
+  std::string bound_note;
+  // Signals for plots.
+  Eigen::VectorXd time_estimation, time_validation;
+  Eigen::MatrixXd measured_estimation, nominal_estimation, augmented_estimation;
+  Eigen::MatrixXd measured_validation, nominal_validation, augmented_validation;
+  std::string signature_variable;        // the x of the signature plot
+  Eigen::VectorXd signature_x, signature_residual;
+  std::string signature_output;
+  double seconds = 0;
+};
+
+Diagnosis diagnose(const ModelFile& model, const Recording& estimation, const Recording* validation,
+                   const DiagnosisOptions& options = {});
+
+/// The JSON of the issue (stable keys); `augmented_path` is written as "augmented.model".
+std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path);
+/// A short report an engineer reads in a terminal.
+std::string diagnosis_text(const Diagnosis& d);
+
+}  // namespace sets

@@ -1,0 +1,61 @@
+#pragma once
+// The catalogue of physics a model may have left out, with stable names, and the rewriting of a
+// model file that adds one of them (a "candidate"). See docs/physics-catalogue.md.
+
+#include <string>
+#include <vector>
+
+#include "sets/models/model_file.hpp"
+#include "sets/data/simulation.hpp"
+
+namespace sets {
+
+struct PhysicsEffect {
+  std::string name;        // stable name, e.g. "coulomb_friction"
+  std::string enters;      // where it can enter a model
+  std::string term;        // the added term with its parameters
+  std::string signature;   // what the residual looks like when it is missing
+};
+
+/// Every entry, in a fixed order.
+const std::vector<PhysicsEffect>& physics_catalogue();
+const PhysicsEffect* find_effect(const std::string& name);
+
+/// One way of adding one effect to one place of a model.
+struct Candidate {
+  std::string effect;                    // catalogue name
+  std::string equation;                  // the state equation, input or output it enters
+  std::string term;                      // the term as written into the model
+  std::vector<std::string> parameters;   // new parameter names (in the augmented model)
+  std::vector<double> scales;            // typical size of each new parameter
+  std::vector<double> neutral;           // values of the new parameters that switch the effect off
+  ModelFile model;                       // the augmented model file
+  int delay_samples = 0;                 // time_delay only
+  bool restart = false;  // calibrate from the file's values: the calibrated nominal may have been
+                         // pulled far off by the missing structure (e.g. a mirrored sensor)
+};
+
+/// The time_delay candidate for actuator `a` delayed by n samples.
+Candidate delay_candidate(const ModelFile& model, const std::string& actuator, int n);
+
+/// Structure the catalogue needs: which states are positions/velocities, which symbols drive
+/// the state equations (actuators), and typical sizes from a nominal simulation.
+struct ModelStructure {
+  std::vector<std::pair<std::string, std::string>> mechanical;  // (position, velocity): q' = v
+  std::vector<std::string> other_states;                        // states that are not positions
+  std::vector<std::string> actuators;                           // inputs/sampled used by derivatives
+};
+ModelStructure analyse_structure(const ModelFile& model);
+
+/// Every candidate for `model` (which may already contain earlier effects). `nominal` is a
+/// simulation of it (typical sizes for starting values); `measured` the recording.
+std::vector<Candidate> generate_candidates(const ModelFile& model, const SimulationResult& nominal,
+                                           const Recording& measured,
+                                           const std::vector<std::string>& exclude_effects = {});
+
+/// Replaces whole-word occurrences of `symbol` in `text`.
+std::string replace_symbol(const std::string& text, const std::string& symbol, const std::string& by);
+/// A name not yet used in the model, starting from `wanted`.
+std::string fresh_name(const ModelFile& model, const std::string& wanted);
+
+}  // namespace sets

@@ -1,0 +1,76 @@
+#pragma once
+// H-polytope {x : A x <= b} and its operations.
+//
+// Guarantees. `contains` evaluates A x - b in interval arithmetic (yes/no/unknown). `is_empty`
+// is decided by GLPK's exact rational simplex on the stored doubles. `outer_box` and `support`
+// certify every finite bound with a Neumaier–Shcherbina safe bound over an artificial box that is
+// proven to contain the polytope (as pui() does), so they contain the polytope; when a direction
+// cannot be certified the answer is +inf (still a bound, just useless) — this happens only for
+// unbounded polytopes. Operations that can only enlarge (remove_redundant) or are built from
+// certified bounds (linear_map) return polytopes that contain the exact result.
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sets/core/bool_interval.hpp"
+#include "sets/numeric/interval_matrix.hpp"
+
+namespace sets {
+
+/// The set {x : A x <= b}; possibly empty or unbounded. Rows are half-spaces a_i^T x <= b_i.
+class HPolytope {
+ public:
+  HPolytope() = default;
+  /// Throws InputError if A and b disagree in size or hold NaN. b may hold +inf (no constraint).
+  HPolytope(Eigen::MatrixXd A, Eigen::VectorXd b);
+
+  int dimension() const { return static_cast<int>(A_.cols()); }
+  int num_constraints() const { return static_cast<int>(A_.rows()); }
+  const Eigen::MatrixXd& A() const { return A_; }
+  const Eigen::VectorXd& b() const { return b_; }
+
+ private:
+  Eigen::MatrixXd A_;
+  Eigen::VectorXd b_;
+};
+
+/// The box as 2n half-spaces (exact).
+HPolytope to_hpolytope(const IntervalVector& box);
+
+/// Is x in P? `unknown` when some a_i^T x - b_i cannot be sign-decided in interval arithmetic.
+BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x);
+/// yes/no from the exact rational simplex; `unknown` only if that solver fails.
+BoolInterval is_empty(const HPolytope& P);
+/// Guaranteed box containing P (+-inf ends where P is unbounded or the end cannot be certified).
+/// Throws EmptySetError if P is empty.
+IntervalVector outer_box(const HPolytope& P);
+/// Rigorous upper bound on max_{x in P} d^T x (+inf if unbounded or not certifiable).
+/// Throws EmptySetError if P is empty.
+double support(const HPolytope& P, const Eigen::VectorXd& d);
+/// Rigorous upper bounds for several directions at once (one LP set-up).
+std::vector<double> support(const HPolytope& P, const std::vector<Eigen::VectorXd>& directions);
+
+/// Largest inscribed ball (floating point LP, not a guarantee). radius = inf if P contains
+/// arbitrarily large balls, 0 for a flat polytope. Throws EmptySetError if P is empty.
+struct ChebyshevBall {
+  Eigen::VectorXd center;
+  double radius = 0;
+};
+ChebyshevBall chebyshev_ball(const HPolytope& P);
+
+/// P ∩ Q (rows stacked; exact).
+HPolytope intersect(const HPolytope& P, const HPolytope& Q);
+/// Removes rows that the LP finds redundant (its optimum, in floating point, does not exceed
+/// b_i), zero rows with b >= 0, and exact duplicates. Removing rows can only enlarge the set, so the result always contains P.
+HPolytope remove_redundant(const HPolytope& P);
+/// Image A P for square invertible A: normals A^{-T} a_i (rounded) with certified offsets, so
+/// the result contains A P and equals it up to rounding. Throws UnsupportedError for singular
+/// or non-square A (a projection; use to_vpolytope in 2-D/3-D) and for unbounded P.
+HPolytope linear_map(const Eigen::MatrixXd& A, const HPolytope& P);
+
+std::string to_string(const HPolytope& P);
+
+}  // namespace sets

@@ -1,0 +1,103 @@
+#pragma once
+// Zonotopes Z = {c + G xi : xi in [-1, 1]^m}: centre c (n) and generator matrix G (n x m).
+//
+// Guarantees. Every operation that computes a new zonotope (linear_map, minkowski_sum,
+// reduce_order, intersect_strip, outer_zonotope of an FPS) evaluates the exact result in
+// outward-rounded interval arithmetic and adds the rounding error as extra axis-aligned
+// generators, so the stored zonotope contains the exact one. Rank-deficient ("flat") generator
+// matrices are allowed everywhere.
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+
+#include "sets/core/bool_interval.hpp"
+#include "sets/domains/hpolytope.hpp"
+#include "sets/numeric/interval_matrix.hpp"
+
+namespace sets {
+
+class FeasibleParameterSet;
+
+class Zonotope {
+ public:
+  Zonotope() = default;
+  /// Throws InputError if G has a different number of rows than c or an entry is not finite.
+  Zonotope(Eigen::VectorXd center, Eigen::MatrixXd generators);
+  /// The box itself (one axis-aligned generator per coordinate with nonzero width); the centre
+  /// and radii are rounded so that the zonotope contains the box. Throws on unbounded boxes.
+  static Zonotope from_box(const IntervalVector& box);
+
+  int dimension() const { return static_cast<int>(c_.size()); }
+  int num_generators() const { return static_cast<int>(G_.cols()); }
+  /// Generators per dimension, m / n.
+  double order() const { return dimension() ? double(num_generators()) / dimension() : 0.0; }
+  const Eigen::VectorXd& center() const { return c_; }
+  const Eigen::MatrixXd& generators() const { return G_; }
+
+ private:
+  Eigen::VectorXd c_;
+  Eigen::MatrixXd G_;
+};
+
+/// A Z + b (b optional): centre A c + b, generators A G, plus rounding generators.
+Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z);
+Zonotope translate(const Zonotope& Z, const Eigen::VectorXd& b);
+/// Z1 + Z2: centres added, generators concatenated (exact up to rounding of the centre).
+Zonotope minkowski_sum(const Zonotope& Z1, const Zonotope& Z2);
+
+/// Interval hull c_i +- sum_j |G_ij|, rounded outward (the tightest box containing Z).
+IntervalVector outer_box(const Zonotope& Z);
+/// Rigorous upper bound on max_{x in Z} d^T x = d^T c + sum_j |d^T g_j|.
+double support(const Zonotope& Z, const Eigen::VectorXd& d);
+/// Is x in Z? Decided by the LP  min t  s.t.  G xi = x - c, |xi_j| <= t. `no` is certified by a
+/// separating direction (support function), `yes` by a feasible xi whose residual is absorbed
+/// with a verified inverse of n independent generators; otherwise `unknown`.
+BoolInterval contains(const Zonotope& Z, const Eigen::VectorXd& x);
+
+/// Order-reduction methods: each keeps the `order*n - n` most important generators and
+/// encloses the rest in a parallelotope (a box in Girard's and Combastel's methods, a box in the
+/// principal axes of the discarded generators for PCA).
+enum class ReductionMethod {
+  girard,     // importance ||g||_1 - ||g||_inf (Girard 2005)
+  combastel,  // importance ||g||_2 (Combastel 2003)
+  pca         // discarded generators boxed in their principal axes (Kopetzki et al. 2017)
+};
+/// An outer approximation of Z with at most max(n, order*n) generators (order >= 1). Zero
+/// generators are dropped first. The result always contains Z.
+Zonotope reduce_order(const Zonotope& Z, double order, ReductionMethod method = ReductionMethod::girard);
+/// Removes zero generators and merges parallel ones (exact up to rounding; contains Z).
+Zonotope compact(const Zonotope& Z);
+
+/// Outer H-polytope of Z. Exact facet enumeration (each facet normal from n-1 generators, in the
+/// span of G for flat zonotopes, plus equality pairs orthogonal to the span); offsets are
+/// rigorous support bounds, so the polytope always contains Z and equals it up to rounding.
+/// Throws UnsupportedError when the number of facet candidates C(m, r-1) exceeds `max_facets`.
+HPolytope to_hpolytope(const Zonotope& Z, long max_facets = 200000);
+/// Vertices of a 2-D zonotope in counter-clockwise order (a polygon a plotting tool can draw).
+/// Floating point (vertices exact up to rounding). Throws InputError unless Z is 2-D.
+Eigen::MatrixXd polygon_vertices(const Zonotope& Z);
+
+/// Alamo–Bravo–Camacho (2005) update: an outer zonotope of Z ∩ {x : |y - a^T x| <= delta},
+///   c + lambda (y - a^T c) + [(I - lambda a^T) G, delta lambda] B,
+/// with lambda = G G^T a / (a^T G G^T a + delta^2) (minimum Frobenius norm of the generators).
+/// nullopt when Z and the strip provably do not meet.
+std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::VectorXd& a, double y,
+                                            double delta);
+
+struct FpsZonotopeOptions {
+  double max_order = 10;                     // reduce after each strip when exceeded
+  ReductionMethod reduction = ReductionMethod::girard;
+  std::optional<Zonotope> initial;           // default: the zonotope of the PUI box
+};
+
+/// Outer approximation of a feasible parameter set with exact regressors by a zonotope,
+/// processing its strips one by one with the Alamo–Bravo–Camacho update. Throws
+/// UnsupportedError for interval regressors, EmptySetError when the data provably falsify the
+/// model (or the initial set), InputError if no initial set is given and the PUIs are unbounded.
+Zonotope outer_zonotope(const FeasibleParameterSet& fps, const FpsZonotopeOptions& options = {});
+
+std::string to_string(const Zonotope& Z);
+
+}  // namespace sets

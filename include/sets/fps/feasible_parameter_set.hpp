@@ -1,0 +1,137 @@
+#pragma once
+// Feasible parameter set (FPS) of bounded-error, linear-in-parameter data.
+//
+// Sample t says: there are a regressor phi in the box Phi_t and an output e in Y_t with
+// phi^T theta = e. For an exact regressor this is the strip |y_t - phi_t^T theta| <= Delta_t.
+// With interval regressors (errors in variables) the set is not convex, but inside one orthant
+// of theta (fixed signs s) it is the polyhedron
+//   sum_j lo_j(s) theta_j <= sup Y_t   and   sum_j hi_j(s) theta_j >= inf Y_t,
+// where lo_j(s)/hi_j(s) pick the end of Phi_tj that minimises/maximises phi_j theta_j. Those
+// coefficients are the exact interval ends, so the orthant polyhedra describe the FPS exactly
+// (Cerone–Regruto eqs. 37–39 are this with Phi_t = centre ± radius).
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "sets/core/bool_interval.hpp"
+#include "sets/domains/hpolytope.hpp"
+#include "sets/numeric/interval_matrix.hpp"
+
+namespace sets {
+
+/// Signs of theta in one orthant: +1 means theta_j >= 0, -1 means theta_j <= 0.
+using Orthant = std::vector<int>;
+
+class FeasibleParameterSet {
+ public:
+  explicit FeasibleParameterSet(int dimension);
+
+  /// Bounded-error data with exact regressors: rows of Phi, outputs y, error bounds delta >= 0.
+  static FeasibleParameterSet from_data(const Eigen::Ref<const Eigen::MatrixXd>& Phi,
+                                        const Eigen::Ref<const Eigen::VectorXd>& y,
+                                        const Eigen::Ref<const Eigen::VectorXd>& delta);
+  /// Errors in variables: interval regressors and interval outputs (already including the bound).
+  static FeasibleParameterSet from_interval_data(const IntervalMatrix& Phi, const IntervalVector& Y);
+
+  /// |y - phi^T theta| <= delta. The strip's ends are rounded outward.
+  void add_strip(const Eigen::Ref<const Eigen::VectorXd>& phi, double y, double delta);
+  /// phi in Phi, phi^T theta in Y.
+  void add_strip(const IntervalVector& Phi, const Interval& Y);
+
+  int dimension() const { return p_; }
+  int size() const { return static_cast<int>(n_); }
+  bool has_interval_regressors() const { return eiv_; }
+  /// The samples' regressors (size() x dimension()) and outputs: views of the first size() rows
+  /// of the storage, which add_strip grows geometrically (amortised O(p) per strip).
+  Eigen::Ref<const IntervalMatrix> regressors() const { return Phi_.topRows(n_); }
+  Eigen::Ref<const IntervalVector> outputs() const { return Y_.head(n_); }
+
+  /// Is theta in the set? `unknown` only when rounding cannot decide.
+  BoolInterval contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const;
+  /// Least squares on the central regressors and outputs (no guarantee; a starting point).
+  Eigen::VectorXd least_squares() const;
+  /// The exact H-polytope of the set inside one orthant (sign constraints included). Its
+  /// coefficients are doubles taken from the interval ends, so it contains the true set.
+  HPolytope orthant_polytope(const Orthant& orthant) const;
+
+ private:
+  int p_;
+  bool eiv_ = false;
+  Eigen::Index n_ = 0;  // samples; the rows of Phi_ and Y_ beyond n_ are spare capacity
+  IntervalMatrix Phi_;  // capacity x p
+  IntervalVector Y_;    // capacity
+};
+
+enum class OrthantSelection {
+  remark2,  // least-squares sign orthant, extended when a bound lands on 0 (Cerone–Regruto)
+  all       // every one of the 2^p orthants (only for interval regressors)
+};
+
+struct PuiOptions {
+  OrthantSelection orthants = OrthantSelection::remark2;
+  bool safe = true;           // certify every end with a Neumaier–Shcherbina safe bound
+  double zero_tolerance = 1e-9;  // relative: a bound this close to 0 extends to the next orthant
+  /// Constraint generation: start each orthant LP from a spread subset of the samples and add
+  /// the violated ones until none is (same PUIs, much faster for N >> p). Off: every sample.
+  bool working_set = true;
+  bool warm_start = true;     // re-solve from the previous basis (false: cold start, for benchmarks)
+};
+
+enum class OrthantStatus { feasible, empty, unknown };
+
+struct OrthantReport {
+  Orthant signs;             // empty vector: the whole space (exact regressors)
+  OrthantStatus status = OrthantStatus::unknown;
+  IntervalVector box;        // PUIs inside this orthant (valid when feasible)
+};
+
+/// Samples that cannot all hold at once, with how far the best compromise violates each.
+struct Falsification {
+  std::vector<int> samples;
+  std::vector<double> violation;  // in output units
+  std::string message() const;
+};
+
+struct PuiResult {
+  IntervalVector box;             // the PUIs [theta_min, theta_max]
+  Eigen::VectorXd central;        // centre of the box (eqs. 41–42)
+  bool empty = false;             // the data falsify the model
+  bool guaranteed = false;        // every finite end certified by a safe bound
+  std::vector<OrthantReport> orthants;
+  Eigen::MatrixXd lower_points;   // column l: a feasible point attaining theta_l^min (LP tolerance)
+  Eigen::MatrixXd upper_points;   // column l: a feasible point attaining theta_l^max
+  Falsification falsification;    // filled when empty
+  int lp_solves = 0;
+};
+
+/// Parameter uncertainty intervals: a box that contains the FPS (the part reached by the chosen
+/// orthants). With `safe`, each finite end is a rigorous bound; see docs/architecture.md.
+PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options = {});
+
+/// Upper bounds on the support function max { d^T theta : theta in the FPS } for each direction
+/// d (a minimum is minus the maximum over -d). One working-set LP per orthant answers all
+/// directions, warm-started, adding violated samples until none is; with `safe` every value is
+/// a Neumaier–Shcherbina bound over the artificial box that certifies the PUIs (see
+/// docs/architecture.md), so it holds for the whole set. +inf: unbounded or not certified.
+/// Interval regressors: the maximum over the orthants that pui() visits with the same options.
+struct FpsSupport {
+  std::vector<double> maxima;   // one per direction; -inf for an empty set
+  IntervalVector box;           // the PUIs found on the way
+  bool empty = false;           // the data falsify the model
+  bool guaranteed = false;      // every finite value certified by a safe bound
+  Falsification falsification;  // filled when empty
+  int lp_solves = 0;
+};
+FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions,
+                   const PuiOptions& options = {});
+
+/// The samples whose constraints conflict (support of the minimax-violation fit), or an empty
+/// list if a parameter satisfies them all.
+Falsification find_conflict(const FeasibleParameterSet& fps);
+
+std::vector<Orthant> all_orthants(int p);
+const char* to_string(OrthantStatus s);
+
+}  // namespace sets

@@ -1,0 +1,187 @@
+#include "sets/data/recording.hpp"
+
+#include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/trim.hpp>
+#include <matio.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "sets/core/error.hpp"
+#include "sets/models/model_file.hpp"
+
+namespace sets {
+
+bool Recording::has(const std::string& name) const {
+  for (const auto& n : names)
+    if (n == name) return true;
+  return false;
+}
+
+const std::vector<double>& Recording::column(const std::string& name) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return columns[i];
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  throw InputError(source + ": missing column \"" + name + "\" (the file has: " + list + ")");
+}
+
+void Recording::add(const std::string& name, std::vector<double> values) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) {
+      columns[i] = std::move(values);
+      return;
+    }
+  names.push_back(name);
+  columns.push_back(std::move(values));
+}
+
+namespace {
+
+// A CSV field without surrounding blanks, carriage returns or quotes.
+std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t\r\"")); }
+
+}  // namespace
+
+Recording parse_csv(const std::string& text, const std::string& source) {
+  Recording r;
+  r.source = source;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!trim(line).empty()) break;
+  }
+  if (trim(line).empty()) throw InputError(source + ": empty file (a header line is expected)");
+  {
+    std::stringstream hs(line);
+    std::string cell;
+    while (std::getline(hs, cell, ',')) {
+      cell = trim(cell);
+      if (cell.empty())
+        throw InputError(source + ": line " + std::to_string(line_no) + ", column " +
+                         std::to_string(r.names.size() + 1) + ": empty column name in the header");
+      r.names.push_back(cell);
+    }
+  }
+  r.columns.resize(r.names.size());
+  const std::size_t nc = r.names.size();
+  int row = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    ++row;
+    std::size_t col = 0, pos = 0;
+    while (true) {
+      const auto comma = line.find(',', pos);
+      const std::string cell = trim(line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+      if (col >= nc)
+        throw InputError(source + ": line " + std::to_string(line_no) + ": more than " + std::to_string(nc) +
+                         " values (the header has " + std::to_string(nc) + " columns)");
+      double v = 0;
+      const char* b = cell.data();
+      const char* e = cell.data() + cell.size();
+      auto res = std::from_chars(b, e, v);
+      const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
+      if (nan_text) v = std::nan("");
+      else if (cell.empty() || res.ec != std::errc() || res.ptr != e)
+        throw InputError(source + ": line " + std::to_string(line_no) + ", column " + std::to_string(col + 1) +
+                         " (\"" + r.names[col] + "\"): not a number: \"" + cell + "\"");
+      if (!std::isfinite(v))
+        throw InputError(source + ": data row " + std::to_string(row) + " (line " + std::to_string(line_no) +
+                         "), column \"" + r.names[col] + "\": NaN or infinite value");
+      r.columns[col].push_back(v);
+      ++col;
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+    if (col != nc)
+      throw InputError(source + ": line " + std::to_string(line_no) + ": " + std::to_string(col) +
+                       " values, the header has " + std::to_string(nc) + " columns");
+  }
+  if (row == 0) throw InputError(source + ": no data rows after the header");
+  return r;
+}
+
+Recording read_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the data file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_csv(ss.str(), path);
+}
+
+Recording read_mat(const std::string& path) {
+  mat_t* mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
+  if (!mat) throw InputError(path + ": cannot open as a MATLAB .mat file");
+  std::vector<std::pair<std::string, std::vector<double>>> vars;
+  while (matvar_t* v = Mat_VarReadNext(mat)) {
+    const bool numeric = v->class_type != MAT_C_CHAR && v->class_type != MAT_C_CELL &&
+                         v->class_type != MAT_C_STRUCT && v->class_type != MAT_C_SPARSE &&
+                         v->class_type != MAT_C_OBJECT && v->class_type != MAT_C_FUNCTION;
+    if (numeric && !v->isComplex && v->rank == 2 && v->name &&
+        (v->dims[0] == 1 || v->dims[1] == 1) && v->dims[0] * v->dims[1] > 1 && v->data) {
+      const std::size_t n = v->dims[0] * v->dims[1];
+      std::vector<double> out(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        switch (v->data_type) {
+          case MAT_T_DOUBLE: out[i] = static_cast<const double*>(v->data)[i]; break;
+          case MAT_T_SINGLE: out[i] = static_cast<const float*>(v->data)[i]; break;
+          case MAT_T_UINT8: out[i] = static_cast<const std::uint8_t*>(v->data)[i]; break;
+          case MAT_T_INT8: out[i] = static_cast<const std::int8_t*>(v->data)[i]; break;
+          case MAT_T_UINT16: out[i] = static_cast<const std::uint16_t*>(v->data)[i]; break;
+          case MAT_T_INT16: out[i] = static_cast<const std::int16_t*>(v->data)[i]; break;
+          case MAT_T_UINT32: out[i] = static_cast<const std::uint32_t*>(v->data)[i]; break;
+          case MAT_T_INT32: out[i] = static_cast<const std::int32_t*>(v->data)[i]; break;
+          default: out.clear(); break;
+        }
+        if (out.empty()) break;
+      }
+      if (!out.empty()) vars.emplace_back(v->name, std::move(out));
+    }
+    Mat_VarFree(v);
+  }
+  Mat_Close(mat);
+  if (vars.empty()) throw InputError(path + ": no numeric vector variables in the .mat file");
+  std::map<std::size_t, int> count;
+  for (const auto& v : vars) ++count[v.second.size()];
+  std::size_t n = 0;
+  int best = 0;
+  for (const auto& [len, c] : count)
+    if (c > best) best = c, n = len;
+  Recording r;
+  r.source = path;
+  for (auto& v : vars) {
+    if (v.second.size() != n) continue;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(v.second[i]))
+        throw InputError(path + ": variable \"" + v.first + "\", sample " + std::to_string(i + 1) +
+                         ": NaN or infinite value");
+    r.add(v.first, std::move(v.second));
+  }
+  return r;
+}
+
+Recording read_recording(const std::string& path) {
+  const auto dot = path.rfind('.');
+  if (dot != std::string::npos && path.substr(dot) == ".mat") return read_mat(path);
+  return read_csv(path);
+}
+
+void write_csv(const Recording& r, const std::string& path) {
+  std::ostringstream out;
+  out.precision(12);
+  for (std::size_t c = 0; c < r.names.size(); ++c) out << (c ? "," : "") << r.names[c];
+  out << "\n";
+  for (int i = 0; i < r.rows(); ++i) {
+    for (std::size_t c = 0; c < r.columns.size(); ++c) out << (c ? "," : "") << r.columns[c][i];
+    out << "\n";
+  }
+  write_file_atomically(path, out.str());
+}
+
+}  // namespace sets

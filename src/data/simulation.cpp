@@ -1,0 +1,388 @@
+#include "sets/data/simulation.hpp"
+
+#include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "sets/core/error.hpp"
+
+namespace sets {
+
+Eigen::VectorXd SimulationResult::series(const std::string& name) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return values.col(static_cast<Eigen::Index>(i));
+  throw InputError("no recorded signal \"" + name + "\"");
+}
+
+double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y) {
+  if (y.size() < 5) return 0;
+  std::vector<double> d;
+  for (Eigen::Index k = 2; k < y.size(); ++k) d.push_back(std::abs(y[k] - 2 * y[k - 1] + y[k - 2]));
+  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+  return d[d.size() / 2] / 0.6745 / std::sqrt(6.0);
+}
+
+double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat) {
+  const double den = (y.array() - y.mean()).matrix().norm();
+  if (!(den > 0)) return (y - yhat).norm() == 0 ? 100.0 : -1e9;
+  return 100.0 * (1.0 - (y - yhat).norm() / den);
+}
+
+namespace {
+
+// A symbol of the model: where its value lives while expressions are evaluated.
+enum class Kind { time, ts, parameter, input, state, signal, sampled, prev };
+
+struct PrevRef {
+  int symbol;  // slot of x
+  int lag;     // n
+  int slot;    // slot of the generated variable
+};
+
+}  // namespace
+
+struct Simulator::Impl {
+  ModelFile model;
+  SimulationOptions options;
+  std::vector<double> time;
+  double Ts = 0;
+  // Slots: one double per symbol; muparser keeps pointers into `slots`, so it never reallocates.
+  std::deque<double> slots;
+  std::map<std::string, int> slot_of;
+  std::map<int, std::string> name_of_slot;
+  int t_slot = 0, ts_slot = 0;
+  std::vector<int> param_slots, input_slots, state_slots, signal_slots, sampled_slots;
+  std::vector<std::vector<double>> input_data;
+  std::vector<double> initial_state;
+  std::vector<mu::Parser> signal_expr, sampled_expr, deriv_expr, output_expr;
+  std::vector<int> deriv_of_state;  // derivative expression index for each state
+  std::vector<PrevRef> prevs;
+  std::vector<int> recorded_slots;  // inputs, states, signals, sampled
+  std::vector<int> history_index;   // slot -> index in recorded_slots (or -1)
+  Eigen::MatrixXd measured;
+  std::vector<int> output_slots;
+
+  int new_slot(const std::string& name) {
+    slots.push_back(0.0);
+    const int s = static_cast<int>(slots.size()) - 1;
+    slot_of[name] = s;
+    name_of_slot[s] = name;
+    return s;
+  }
+
+  void compile(mu::Parser& p, const std::string& text, const std::string& where) {
+    // prev(x, n) -> a generated variable filled from the history before each sample interval.
+    static const std::regex prev_re(R"(prev\s*\(\s*([A-Za-z_][A-Za-z0-9_]*)\s*,\s*([0-9]+)\s*\))");
+    std::string rewritten;
+    auto begin = std::sregex_iterator(text.begin(), text.end(), prev_re);
+    std::size_t last = 0;
+    for (auto it = begin; it != std::sregex_iterator(); ++it) {
+      const auto& m = *it;
+      const std::string x = m[1].str();
+      const int n = std::stoi(m[2].str());
+      auto s = slot_of.find(x);
+      if (s == slot_of.end())
+        throw InputError(model.source + ": unknown symbol \"" + x + "\" in prev() in " + where + ": " + text);
+      if (n < 1) throw InputError(model.source + ": prev(" + x + ", " + m[2].str() + ") in " + where + ": n must be >= 1");
+      const std::string var = "prev__" + x + "__" + std::to_string(n);
+      if (!slot_of.count(var)) {
+        const int slot = new_slot(var);
+        prevs.push_back({s->second, n, slot});
+      }
+      rewritten += text.substr(last, static_cast<std::size_t>(m.position(0)) - last) + var;
+      last = static_cast<std::size_t>(m.position(0) + m.length(0));
+    }
+    rewritten += text.substr(last);
+    if (rewritten.find("prev") != std::string::npos && std::regex_search(rewritten, std::regex(R"(\bprev\s*\()")))
+      throw InputError(model.source + ": " + where + ": prev(x, n) needs a symbol and a whole number: " + text);
+    try {
+      p.SetExpr(rewritten);
+      // Which variables does it use? Undefined ones are reported by name.
+      mu::Parser probe;
+      probe.SetExpr(rewritten);
+      const auto used = probe.GetUsedVar();
+      for (const auto& [name, ptr] : used) {
+        (void)ptr;
+        if (!slot_of.count(name))
+          throw InputError(model.source + ": unknown symbol \"" + name + "\" in " + where + ": " + text);
+      }
+      for (const auto& [name, ptr] : used) {
+        (void)ptr;
+        p.DefineVar(name, &slots[static_cast<std::size_t>(slot_of.at(name))]);
+      }
+      p.Eval();  // syntax errors surface here, not during simulation
+    } catch (const mu::Parser::exception_type& e) {
+      throw InputError(model.source + ": cannot parse " + where + ": \"" + text + "\": " + e.GetMsg());
+    }
+  }
+
+  static double eval(mu::Parser& p) { return p.Eval(); }
+
+  void eval_signals() {
+    for (std::size_t i = 0; i < signal_expr.size(); ++i)
+      slots[static_cast<std::size_t>(signal_slots[i])] = signal_expr[i].Eval();
+  }
+
+  void derivative(const double* x, double tt, double* dx) {
+    slots[static_cast<std::size_t>(t_slot)] = tt;
+    for (std::size_t i = 0; i < state_slots.size(); ++i) slots[static_cast<std::size_t>(state_slots[i])] = x[i];
+    eval_signals();
+    for (std::size_t i = 0; i < state_slots.size(); ++i) dx[i] = deriv_expr[static_cast<std::size_t>(deriv_of_state[i])].Eval();
+  }
+};
+
+namespace {
+Eigen::MatrixXd take_measured(const ModelFile& m, const Recording& data) {
+  Eigen::MatrixXd y(data.rows(), static_cast<Eigen::Index>(m.outputs.size()));
+  for (std::size_t j = 0; j < m.outputs.size(); ++j) {
+    const auto& c = data.column(m.outputs[j].second);
+    for (int i = 0; i < data.rows(); ++i) y(i, static_cast<Eigen::Index>(j)) = c[static_cast<std::size_t>(i)];
+  }
+  return y;
+}
+}  // namespace
+
+Simulator::Simulator(const ModelFile& model, const Recording& data, SimulationOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  auto& I = *impl_;
+  I.model = model;
+  I.options = options;
+  if (options.substeps < 1) throw InputError("substeps must be >= 1");
+  const int N = data.rows();
+  if (N < 2) throw InputError(data.source + ": at least two samples are needed");
+  // Time.
+  if (!model.time_column.empty()) {
+    I.time = data.column(model.time_column);
+    for (int k = 1; k < N; ++k)
+      if (!(I.time[static_cast<std::size_t>(k)] > I.time[static_cast<std::size_t>(k - 1)]))
+        throw InputError(data.source + ": time column \"" + model.time_column + "\" does not increase at data row " +
+                         std::to_string(k + 1) + " (t = " + std::to_string(I.time[static_cast<std::size_t>(k)]) +
+                         " s after " + std::to_string(I.time[static_cast<std::size_t>(k - 1)]) + " s)");
+    I.Ts = (I.time.back() - I.time.front()) / (N - 1);
+  } else {
+    I.Ts = *model.sample_time;
+    I.time.resize(static_cast<std::size_t>(N));
+    for (int k = 0; k < N; ++k) I.time[static_cast<std::size_t>(k)] = k * I.Ts;
+  }
+  // Slots.
+  I.t_slot = I.new_slot("t");
+  I.ts_slot = I.new_slot("Ts");
+  I.slots[static_cast<std::size_t>(I.ts_slot)] = I.Ts;
+  for (const auto& p : model.parameters) {
+    I.param_slots.push_back(I.new_slot(p.name));
+    I.slots.back() = p.value;
+  }
+  for (const auto& [sym, col] : model.inputs) {
+    I.input_slots.push_back(I.new_slot(sym));
+    I.input_data.push_back(data.column(col));
+  }
+  for (const auto& s : model.states) {
+    I.state_slots.push_back(I.new_slot(s.name));
+    I.initial_state.push_back(s.initial_value ? *s.initial_value : data.column(s.initial_column).front());
+  }
+  for (const auto& e : model.signals) I.signal_slots.push_back(I.new_slot(e.first));
+  for (const auto& e : model.sampled) I.sampled_slots.push_back(I.new_slot(e.first));
+  // Expressions (each parser gets pointers to the slots it uses).
+  I.signal_expr.resize(model.signals.size());
+  I.sampled_expr.resize(model.sampled.size());
+  I.deriv_expr.resize(model.derivatives.size());
+  for (std::size_t i = 0; i < model.signals.size(); ++i)
+    I.compile(I.signal_expr[i], model.signals[i].second, "signals." + model.signals[i].first);
+  for (std::size_t i = 0; i < model.sampled.size(); ++i)
+    I.compile(I.sampled_expr[i], model.sampled[i].second, "sampled." + model.sampled[i].first);
+  for (std::size_t i = 0; i < model.derivatives.size(); ++i)
+    I.compile(I.deriv_expr[i], model.derivatives[i].second, "derivatives." + model.derivatives[i].first);
+  for (const auto& s : model.states)
+    for (std::size_t i = 0; i < model.derivatives.size(); ++i)
+      if (model.derivatives[i].first == s.name) I.deriv_of_state.push_back(static_cast<int>(i));
+  // Recorded symbols and histories for prev().
+  for (int s : I.input_slots) I.recorded_slots.push_back(s);
+  for (int s : I.state_slots) I.recorded_slots.push_back(s);
+  for (int s : I.signal_slots) I.recorded_slots.push_back(s);
+  for (int s : I.sampled_slots) I.recorded_slots.push_back(s);
+  I.history_index.assign(I.slots.size(), -1);
+  for (std::size_t i = 0; i < I.recorded_slots.size(); ++i) I.history_index[static_cast<std::size_t>(I.recorded_slots[i])] = static_cast<int>(i);
+  for (const auto& pr : I.prevs)
+    if (I.history_index[static_cast<std::size_t>(pr.symbol)] < 0)
+      throw InputError(model.source + ": prev(" + I.name_of_slot[pr.symbol] +
+                       ", n): only inputs, states, signals and sampled signals have a past");
+  for (const auto& o : model.outputs) I.output_slots.push_back(I.slot_of.at(o.first));
+  I.measured = take_measured(model, data);
+}
+
+Simulator::~Simulator() = default;
+
+const ModelFile& Simulator::model() const { return impl_->model; }
+int Simulator::samples() const { return static_cast<int>(impl_->time.size()); }
+const std::vector<double>& Simulator::time() const { return impl_->time; }
+double Simulator::sample_time() const { return impl_->Ts; }
+const Eigen::MatrixXd& Simulator::measured() const { return impl_->measured; }
+Eigen::VectorXd Simulator::parameter_values() const {
+  Eigen::VectorXd p(static_cast<Eigen::Index>(impl_->model.parameters.size()));
+  for (std::size_t i = 0; i < impl_->model.parameters.size(); ++i) p[static_cast<Eigen::Index>(i)] = impl_->model.parameters[i].value;
+  return p;
+}
+std::vector<int> Simulator::free_parameters() const {
+  std::vector<int> f;
+  for (std::size_t i = 0; i < impl_->model.parameters.size(); ++i)
+    if (!impl_->model.parameters[i].fixed) f.push_back(static_cast<int>(i));
+  return f;
+}
+std::vector<std::string> Simulator::parameter_names() const {
+  std::vector<std::string> n;
+  for (const auto& p : impl_->model.parameters) n.push_back(p.name);
+  return n;
+}
+std::vector<std::string> Simulator::output_names() const {
+  std::vector<std::string> n;
+  for (const auto& o : impl_->model.outputs) n.push_back(o.first);
+  return n;
+}
+std::vector<std::string> Simulator::output_columns() const {
+  std::vector<std::string> n;
+  for (const auto& o : impl_->model.outputs) n.push_back(o.second);
+  return n;
+}
+
+namespace {
+
+struct Run {
+  bool ok = true;
+  double t_fail = 0;
+  std::string state_fail;
+};
+
+}  // namespace
+
+// `schedule` (optional, samples x parameters): the parameter values held over each sample
+// interval, replacing `params` from that sample on.
+static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixXd* outputs, Eigen::MatrixXd* values,
+               const Eigen::MatrixXd* schedule = nullptr) {
+  Run r;
+  const int N = static_cast<int>(I.time.size());
+  const std::size_t ns = I.state_slots.size();
+  const std::size_t nr = I.recorded_slots.size();
+  if (params.size() != static_cast<Eigen::Index>(I.param_slots.size())) throw InputError("wrong number of parameters");
+  for (std::size_t i = 0; i < I.param_slots.size(); ++i) I.slots[static_cast<std::size_t>(I.param_slots[i])] = params[static_cast<Eigen::Index>(i)];
+  std::vector<double> hist(static_cast<std::size_t>(N) * nr, 0.0);
+  std::vector<double> x(I.initial_state), k1(ns), k2(ns), k3(ns), k4(ns), xt(ns);
+  if (outputs) outputs->resize(N, static_cast<Eigen::Index>(I.output_slots.size()));
+  if (values) values->resize(N, static_cast<Eigen::Index>(nr));
+  std::vector<bool> filled(nr, false);
+  for (int k = 0; k < N; ++k) {
+    const double tk = I.time[static_cast<std::size_t>(k)];
+    I.slots[static_cast<std::size_t>(I.t_slot)] = tk;
+    if (schedule)
+      for (std::size_t i = 0; i < I.param_slots.size(); ++i)
+        I.slots[static_cast<std::size_t>(I.param_slots[i])] = (*schedule)(k, static_cast<Eigen::Index>(i));
+    for (std::size_t i = 0; i < I.input_slots.size(); ++i)
+      I.slots[static_cast<std::size_t>(I.input_slots[i])] = I.input_data[i][static_cast<std::size_t>(k)];
+    for (std::size_t i = 0; i < ns; ++i) I.slots[static_cast<std::size_t>(I.state_slots[i])] = x[i];
+    // prev() values: sample k - n, or sample 0 when there is none yet.
+    for (const auto& pr : I.prevs) {
+      const int h = I.history_index[static_cast<std::size_t>(pr.symbol)];
+      const int kk = std::max(0, k - pr.lag);
+      double v;
+      if (kk < k) {
+        v = hist[static_cast<std::size_t>(kk) * nr + static_cast<std::size_t>(h)];
+      } else {
+        // At sample 0 only inputs and states are known; a sampled or algebraic signal's own past is 0.
+        v = I.slots[static_cast<std::size_t>(pr.symbol)];
+        bool is_known = false;
+        for (int s : I.input_slots) is_known = is_known || s == pr.symbol;
+        for (int s : I.state_slots) is_known = is_known || s == pr.symbol;
+        if (!is_known) v = 0.0;
+      }
+      I.slots[static_cast<std::size_t>(pr.slot)] = v;
+    }
+    I.eval_signals();
+    for (std::size_t i = 0; i < I.sampled_expr.size(); ++i)
+      I.slots[static_cast<std::size_t>(I.sampled_slots[i])] = I.sampled_expr[i].Eval();
+    I.eval_signals();  // signals may use sampled values
+    for (std::size_t i = 0; i < nr; ++i) hist[static_cast<std::size_t>(k) * nr + i] = I.slots[static_cast<std::size_t>(I.recorded_slots[i])];
+    if (outputs)
+      for (std::size_t j = 0; j < I.output_slots.size(); ++j)
+        (*outputs)(k, static_cast<Eigen::Index>(j)) = I.slots[static_cast<std::size_t>(I.output_slots[j])];
+    if (values)
+      for (std::size_t i = 0; i < nr; ++i) (*values)(k, static_cast<Eigen::Index>(i)) = hist[static_cast<std::size_t>(k) * nr + i];
+    if (k + 1 == N) break;
+    const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
+    double tt = tk;
+    for (int s = 0; s < I.options.substeps; ++s) {
+      I.derivative(x.data(), tt, k1.data());
+      for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + 0.5 * h * k1[i];
+      I.derivative(xt.data(), tt + 0.5 * h, k2.data());
+      for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + 0.5 * h * k2[i];
+      I.derivative(xt.data(), tt + 0.5 * h, k3.data());
+      for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + h * k3[i];
+      I.derivative(xt.data(), tt + h, k4.data());
+      for (std::size_t i = 0; i < ns; ++i) x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+      tt += h;
+      for (std::size_t i = 0; i < ns; ++i)
+        if (!std::isfinite(x[i]) || std::abs(x[i]) > 1e150) {
+          r.ok = false;
+          r.t_fail = tt;
+          r.state_fail = I.model.states[i].name;
+          return r;
+        }
+    }
+  }
+  if (outputs && !outputs->allFinite()) {
+    for (int k = 0; k < N; ++k)
+      if (!outputs->row(k).allFinite()) {
+        r.ok = false;
+        r.t_fail = I.time[static_cast<std::size_t>(k)];
+        r.state_fail = "an output";
+        return r;
+      }
+  }
+  return r;
+}
+
+SimulationResult Simulator::simulate(const Eigen::VectorXd& parameters) const {
+  SimulationResult res;
+  for (int s : impl_->recorded_slots) res.names.push_back(impl_->name_of_slot.at(s));
+  Run r;
+  try {
+    r = run(*impl_, parameters, &res.outputs, &res.values);
+  } catch (const mu::Parser::exception_type& e) {
+    throw NumericalError(impl_->model.source + ": expression evaluation failed: " + e.GetMsg());
+  }
+  if (!r.ok) {
+    std::ostringstream os;
+    os << impl_->model.source << ": the simulation blew up at t = " << r.t_fail << " s (" << r.state_fail
+       << " is no longer finite)";
+    throw NumericalError(os.str());
+  }
+  return res;
+}
+
+bool Simulator::simulate_outputs(const Eigen::VectorXd& parameters, Eigen::MatrixXd& outputs) const {
+  try {
+    return run(*impl_, parameters, &outputs, nullptr).ok;
+  } catch (const mu::Parser::exception_type&) {
+    return false;
+  }
+}
+
+bool Simulator::simulate_outputs_scheduled(const Eigen::MatrixXd& schedule, Eigen::MatrixXd& outputs) const {
+  if (schedule.rows() != samples() || schedule.cols() != static_cast<Eigen::Index>(impl_->param_slots.size()))
+    throw InputError("parameter schedule is " + std::to_string(schedule.rows()) + " x " + std::to_string(schedule.cols()) +
+                     ", expected samples x parameters = " + std::to_string(samples()) + " x " +
+                     std::to_string(impl_->param_slots.size()));
+  try {
+    return run(*impl_, schedule.row(0).transpose(), &outputs, nullptr, &schedule).ok;
+  } catch (const mu::Parser::exception_type&) {
+    return false;
+  }
+}
+
+void check_model(const ModelFile& model, const Recording& data) { Simulator s(model, data, {1}); }
+
+}  // namespace sets

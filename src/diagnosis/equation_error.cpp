@@ -1,0 +1,394 @@
+#include "sets/diagnosis/equation_error.hpp"
+
+#include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/trim.hpp>
+#include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/numeric/interval.hpp"
+#include "sets/numeric/linear_program.hpp"
+#include "sets/data/simulation.hpp"
+
+namespace sets {
+
+namespace {
+
+std::set<std::string> used_symbols(const std::string& text) {
+  std::set<std::string> out;
+  try {
+    mu::Parser probe;
+    probe.SetExpr(text);
+    for (const auto& [name, ptr] : probe.GetUsedVar()) {
+      (void)ptr;
+      out.insert(name);
+    }
+  } catch (const mu::Parser::exception_type&) {
+  }
+  return out;
+}
+
+std::string trimmed(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t")); }
+
+}  // namespace
+
+EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& data, const std::string& state,
+                                       const EquationErrorOptions& options) {
+  EquationErrorResult res;
+  auto fail = [&](const std::string& why) {
+    res.note = "equation-error PUI not built for \"" + state + "\": " + why;
+    return res;
+  };
+  const std::string* f_text = model.derivative(state);
+  if (!f_text) return fail("not a state equation");
+  Simulator sim(model, data, {1});  // time, sample time and the same input errors as everywhere
+  const int N = sim.samples();
+  const double Ts = sim.sample_time();
+
+  // Measured symbols: inputs, and every model symbol compared with a column.
+  std::map<std::string, Eigen::VectorXd> measured;
+  auto column = [&](const std::string& c) {
+    const auto& v = data.column(c);
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())).eval();
+  };
+  for (const auto& [sym, col] : model.inputs) measured[sym] = column(col);
+  for (const auto& [sym, col] : model.outputs) measured[sym] = column(col);
+  // Unmeasured states that are the derivative of a measured one (q' = v, q measured): estimated by
+  // a central difference over +-wv samples, with a noise radius rho (3 sigma of that estimate).
+  std::map<std::string, std::string> derivative_of;  // z -> measured p with p' = z
+  for (const auto& s : model.states)
+    if (measured.count(s.name))
+      if (const std::string* d = model.derivative(s.name)) {
+        const std::string z = trimmed(*d);
+        bool is_state = false;
+        for (const auto& s2 : model.states) is_state = is_state || s2.name == z;
+        if (is_state && !measured.count(z)) derivative_of[z] = s.name;
+      }
+  int order = 0;
+  const Eigen::VectorXd* integrated = nullptr;  // x (order 1) or p with p' = x (order 2)
+  if (measured.count(state)) {
+    order = 1;
+    integrated = &measured[state];
+  } else if (derivative_of.count(state)) {
+    order = 2;
+    integrated = &measured[derivative_of[state]];
+  } else {
+    return fail("the state is neither measured nor the derivative of a measured state");
+  }
+
+  // Which symbols the equation needs (through its signals), and whether each one is available.
+  std::map<std::string, int> kind;  // 0 time, 1 parameter, 2 measured, 3 differentiated, 4 signal
+  kind["t"] = 0;
+  kind["Ts"] = 0;
+  for (const auto& p : model.parameters) kind[p.name] = 1;
+  for (const auto& [sym, v] : measured) kind[sym] = 2;
+  for (const auto& [z, p] : derivative_of) kind[z] = 3;
+  std::set<std::string> needed_signals, differentiated;
+  std::vector<std::string> todo{*f_text};
+  while (!todo.empty()) {
+    const std::string text = todo.back();
+    todo.pop_back();
+    if (text.find("prev") != std::string::npos) return fail("the equation uses prev()");
+    for (const auto& s : used_symbols(text)) {
+      if (kind.count(s)) {
+        if (kind[s] == 3) differentiated.insert(s);
+        continue;
+      }
+      bool found = false;
+      for (const auto& [name, expr] : model.signals)
+        if (name == s) {
+          found = true;
+          if (needed_signals.insert(s).second) todo.push_back(expr);
+        }
+      if (!found) return fail("\"" + s + "\" is neither measured nor computable from measurements");
+    }
+  }
+  if (differentiated.size() > 3) return fail("more than three differentiated states");
+
+  // Evaluation of the equation's right-hand side from measured values (muparser, like the simulator).
+  std::map<std::string, double> vars;  // node addresses are stable
+  for (const auto& [s, k] : kind) vars[s] = 0;
+  for (const auto& s : needed_signals) vars[s] = 0;
+  auto compile = [&](mu::Parser& p, const std::string& text) {
+    p.SetExpr(text);
+    for (const auto& s : used_symbols(text)) p.DefineVar(s, &vars[s]);
+  };
+  std::vector<std::pair<double*, mu::Parser>> signals;
+  for (const auto& [name, expr] : model.signals)
+    if (needed_signals.count(name)) {
+      signals.emplace_back(&vars[name], mu::Parser());
+      compile(signals.back().second, expr);
+    }
+  mu::Parser f;
+  compile(f, *f_text);
+
+  // One attempt per integration window w (samples).
+  auto attempt = [&](int w) -> EquationErrorResult {
+  EquationErrorResult res;
+  auto fail = [&](const std::string& why) {
+    res.note = "equation-error PUI not built for \"" + state + "\": " + why;
+    return res;
+  };
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(N);  // the integrated derivative, exact in measurements
+  {
+    const Eigen::VectorXd& x = *integrated;
+    if (order == 1)
+      for (int t = w; t < N; ++t) D[t] = x[t] - x[t - w];
+    else
+      for (int t = 2 * w; t < N; ++t) D[t] = x[t] - 2 * x[t - w] + x[t - 2 * w];
+  }
+  const int wv = std::max(1, w / 4);
+  std::map<std::string, Eigen::VectorXd> zhat;
+  std::map<std::string, double> rho;
+  for (const auto& z : differentiated) {
+    const Eigen::VectorXd& p = measured[derivative_of[z]];
+    Eigen::VectorXd v(N);
+    for (int j = 0; j < N; ++j) {
+      const int a = std::max(0, j - wv), b = std::min(N - 1, j + wv);
+      v[j] = (p[b] - p[a]) / ((b - a) * Ts);
+    }
+    zhat[z] = v;
+    rho[z] = 3 * noise_sigma(p) / (std::sqrt(2.0) * wv * Ts);
+  }
+  // Sample interval j (from t_j to t_j+1): held signals at j, states at the interval's midpoint,
+  // each differentiated state anywhere in its estimate +- rho (combination `combo`).
+  const std::vector<std::string> dz(differentiated.begin(), differentiated.end());
+  int combos = 1;
+  for (std::size_t i = 0; i < dz.size(); ++i) combos *= 3;
+  std::vector<std::string> state_names;
+  for (const auto& s : model.states) state_names.push_back(s.name);
+  auto set_sample = [&](int j, int combo) {
+    const int j1 = std::min(j + 1, N - 1);
+    vars["t"] = sim.time()[static_cast<std::size_t>(j)] + 0.5 * Ts;
+    vars["Ts"] = Ts;
+    for (const auto& [s, v] : measured) {
+      const bool is_state = std::find(state_names.begin(), state_names.end(), s) != state_names.end();
+      vars[s] = is_state ? 0.5 * (v[j] + v[j1]) : v[j];
+    }
+    int c = combo;
+    for (const auto& z : dz) {
+      vars[z] = 0.5 * (zhat[z][j] + zhat[z][j1]) + (c % 3 - 1) * rho[z];
+      c /= 3;
+    }
+  };
+  const Eigen::VectorXd theta_hat = [&] {
+    Eigen::VectorXd p(static_cast<Eigen::Index>(model.parameters.size()));
+    for (std::size_t i = 0; i < model.parameters.size(); ++i) p[static_cast<Eigen::Index>(i)] = model.parameters[i].value;
+    return p;
+  }();
+  auto eval = [&](const Eigen::VectorXd& theta) {
+    for (std::size_t i = 0; i < model.parameters.size(); ++i) vars[model.parameters[i].name] = theta[static_cast<Eigen::Index>(i)];
+    for (auto& [slot, p] : signals) *slot = p.Eval();
+    return f.Eval();
+  };
+  std::vector<double> scale(model.parameters.size());
+  for (std::size_t i = 0; i < scale.size(); ++i)
+    scale[i] = std::abs(theta_hat[static_cast<Eigen::Index>(i)]) > 0 ? std::abs(theta_hat[static_cast<Eigen::Index>(i)]) : 1.0;
+
+  try {
+    // Which free parameters act on the equation, and is inertia * f affine in the others?
+    std::vector<int> probe_samples;
+    for (int s = 0; s < 40; ++s) probe_samples.push_back(static_cast<int>((static_cast<long>(N - 2) * (2 * s + 1)) / 80));
+    std::vector<int> acting;
+    for (std::size_t i = 0; i < model.parameters.size(); ++i) {
+      if (model.parameters[i].fixed) continue;
+      Eigen::VectorXd th = theta_hat;
+      th[static_cast<Eigen::Index>(i)] += 0.5 * scale[i];
+      bool acts = false;
+      for (int j : probe_samples) {
+        set_sample(j, combos / 2);
+        const double g0 = eval(theta_hat), g1 = eval(th);
+        acts = acts || g0 != g1;
+      }
+      if (acts) acting.push_back(static_cast<int>(i));
+    }
+    if (acting.empty()) return fail("no free parameter acts on the equation");
+    int inertia = -2;
+    for (int c = -1; c < static_cast<int>(acting.size()) && inertia == -2; ++c) {
+      const int ci = c < 0 ? -1 : acting[static_cast<std::size_t>(c)];
+      auto g = [&](const Eigen::VectorXd& th) { return (ci < 0 ? 1.0 : th[ci]) * eval(th); };
+      bool ok = ci < 0 || theta_hat[ci] != 0;
+      for (int j : probe_samples) {
+        if (!ok) break;
+        set_sample(j, combos / 2);
+        const double g0 = g(theta_hat);
+        double mag = std::abs(g0), worst = 0;
+        if (ci >= 0) {
+          Eigen::VectorXd th = theta_hat;
+          th[ci] *= 1.7;
+          worst = std::max(worst, std::abs(g(th) - g0));
+        }
+        for (int k : acting) {
+          if (k == ci) continue;
+          const double hk = 0.5 * scale[static_cast<std::size_t>(k)];
+          Eigen::VectorXd t1 = theta_hat, t2 = theta_hat;
+          t1[k] += hk;
+          t2[k] += 2 * hk;
+          const double g1 = g(t1), g2 = g(t2);
+          mag = std::max({mag, std::abs(g1), std::abs(g2)});
+          worst = std::max(worst, std::abs(g2 - 2 * g1 + g0));
+          for (int l : acting) {
+            if (l <= k || l == ci) continue;
+            Eigen::VectorXd t3 = t1, t4 = theta_hat;
+            t3[l] += 0.5 * scale[static_cast<std::size_t>(l)];
+            t4[l] += 0.5 * scale[static_cast<std::size_t>(l)];
+            worst = std::max(worst, std::abs(g(t3) - g1 - g(t4) + g0));
+          }
+        }
+        ok = worst <= 1e-8 * (mag + 1e-300);
+      }
+      if (ok) inertia = ci;
+    }
+    if (inertia == -2) return fail("its free parameters do not enter linearly (not even after multiplying by one of them)");
+
+    // Per sample interval: the regressor of each linear parameter and the known part, as the hull
+    // over the differentiated states' boxes, and their values at the estimates (centre).
+    std::vector<int> linear;
+    for (int k : acting)
+      if (k != inertia) linear.push_back(k);
+    const auto nl = static_cast<Eigen::Index>(linear.size());
+    Eigen::MatrixXd lo(N, nl + 1), hi(N, nl + 1), mid(N, nl + 1);  // column nl: the known part c0
+    for (int j = 0; j < N - 1; ++j) {
+      for (int combo = 0; combo < combos; ++combo) {
+        set_sample(j, combo);
+        const double gi = inertia < 0 ? 1.0 : theta_hat[inertia];
+        const double g0 = gi * eval(theta_hat);
+        Eigen::VectorXd c(nl + 1);
+        double known = g0;
+        for (Eigen::Index k = 0; k < nl; ++k) {
+          const int pk = linear[static_cast<std::size_t>(k)];
+          Eigen::VectorXd th = theta_hat;
+          th[pk] += scale[static_cast<std::size_t>(pk)];
+          c[k] = (gi * eval(th) - g0) / scale[static_cast<std::size_t>(pk)];
+          known -= theta_hat[pk] * c[k];
+        }
+        c[nl] = known;
+        if (!c.allFinite()) return fail("the equation is not finite at t = " + std::to_string(sim.time()[static_cast<std::size_t>(j)]) + " s");
+        if (combo == 0) lo.row(j) = hi.row(j) = c.transpose();
+        lo.row(j) = lo.row(j).cwiseMin(c.transpose());
+        hi.row(j) = hi.row(j).cwiseMax(c.transpose());
+        if (combo == combos / 2) mid.row(j) = c.transpose();
+      }
+    }
+    // Integration kernel over the sample intervals before t: the box of length T = w Ts (order 1)
+    // or the triangle of two boxes (order 2), integrated exactly over each interval.
+    std::vector<double> K;
+    if (order == 1) {
+      K.assign(static_cast<std::size_t>(w), Ts);
+    } else {
+      for (int d = 0; d < 2 * w; ++d) K.push_back((d < w ? d + 0.5 : 2 * w - d - 0.5) * Ts * Ts);
+    }
+    const int span = static_cast<int>(K.size()), first = order * w, step = std::max(1, w / 2);
+    std::vector<int> rows;
+    for (int t = first; t < N; t += step) rows.push_back(t);
+    const auto m = static_cast<Eigen::Index>(rows.size());
+    const Eigen::Index p = nl + (inertia >= 0 ? 1 : 0);
+    IntervalMatrix Phi(m, p);
+    IntervalVector Y(m);
+    Eigen::VectorXd resid(m);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const int t = rows[static_cast<std::size_t>(r)];
+      const int j0 = t - order * w;  // the kernel covers intervals j0 .. t - 1
+      std::vector<Interval> acc(static_cast<std::size_t>(nl + 1), Interval(0.0));
+      Eigen::VectorXd accm = Eigen::VectorXd::Zero(nl + 1);
+      for (int d = 0; d < span; ++d) {
+        const int j = j0 + d;
+        for (Eigen::Index k = 0; k <= nl; ++k) {
+          acc[static_cast<std::size_t>(k)] += Interval(K[static_cast<std::size_t>(d)]) * Interval(lo(j, k), hi(j, k));
+          accm[k] += K[static_cast<std::size_t>(d)] * mid(j, k);
+        }
+      }
+      // theta_c D - sum theta_k I[c_k] = I[c0]  (theta_c = 1 without an inertia parameter).
+      Eigen::Index col = 0;
+      double e = -accm[nl];
+      if (inertia >= 0) {
+        Phi(r, col++) = Interval(D[t]);
+        e += theta_hat[inertia] * D[t];
+      }
+      for (Eigen::Index k = 0; k < nl; ++k) {
+        Phi(r, col++) = -acc[static_cast<std::size_t>(k)];
+        e -= theta_hat[linear[static_cast<std::size_t>(k)]] * accm[k];
+      }
+      Y[r] = acc[static_cast<std::size_t>(nl)] - (inertia >= 0 ? Interval(0.0) : Interval(D[t]));
+      if (inertia < 0) e += D[t];
+      resid[r] = e;
+    }
+    const double delta = std::max(options.bound_factor * resid.cwiseAbs().maxCoeff(), 1e-300);
+    // Scaled unknowns z = theta / scale and rows in units of delta keep the LPs well conditioned.
+    std::vector<int> unknowns;
+    if (inertia >= 0) unknowns.push_back(inertia);
+    for (int k : linear) unknowns.push_back(k);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      for (Eigen::Index c = 0; c < p; ++c)
+        Phi(r, c) = Phi(r, c) * Interval(scale[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(c)])]) / Interval(delta);
+      Y[r] = (Y[r] + Interval(-delta, delta)) / Interval(delta);
+    }
+    PuiOptions po;
+    po.orthants = p <= 5 ? OrthantSelection::all : OrthantSelection::remark2;
+    const PuiResult pr = pui(FeasibleParameterSet::from_interval_data(Phi, Y), po);
+    if (pr.empty) return fail("the strips are inconsistent under the bound (the model is falsified there)");
+    res.built = true;
+    res.guaranteed = pr.guaranteed;
+    res.delta = delta;
+    res.rows = static_cast<int>(m);
+    res.window = w;
+    res.order = order;
+    res.box.resize(p);
+    for (Eigen::Index c = 0; c < p; ++c) {
+      res.parameters.push_back(model.parameters[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(c)])].name);
+      res.box[c] = pr.box[c] * Interval(scale[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(c)])]);
+    }
+    std::string dnote;
+    for (const auto& z : dz) dnote += ", " + z + " = d" + derivative_of[z] + "/dt +- " + std::to_string(rho[z]);
+    res.note = "equation-error PUI of \"" + state + "\": integrated " + std::to_string(order) + "x over " +
+               std::to_string(w) + " samples, " + std::to_string(m) + " strips" + dnote +
+               " (3 sigma of the central difference over +-" + std::to_string(wv) +
+               " samples), equation-error bound = " + [&] { std::ostringstream os; os << options.bound_factor; return os.str(); }() +
+               " x its largest value at the estimate";
+  } catch (const mu::Parser::exception_type& e) {
+    return fail("expression evaluation failed: " + e.GetMsg());
+  }
+  return res;
+  };
+
+  // Windows from N/500 to N/25 samples: short windows keep more of the record's detail, long ones
+  // average the measurement noise of the differences. Each PUI holds under its own stated bound;
+  // the one with the smallest total relative width is reported.
+  std::vector<int> windows;
+  if (options.window > 0) {
+    windows.push_back(options.window);
+  } else {
+    for (int div : {500, 200, 100, 50, 25}) {
+      const int w = std::clamp(N / div, 4, 500);
+      if (N >= 8 * w && std::find(windows.begin(), windows.end(), w) == windows.end()) windows.push_back(w);
+    }
+  }
+  if (windows.empty() || N < 8 * windows.front()) return fail("the record is too short for the integration window");
+  double best = inf;
+  for (int w : windows) {
+    EquationErrorResult r = attempt(w);
+    if (!r.built) {
+      if (!res.built) res = r;
+      continue;
+    }
+    double width = 0;
+    for (Eigen::Index c = 0; c < r.box.size(); ++c) {
+      const auto& nm = r.parameters[static_cast<std::size_t>(c)];
+      const double v = std::abs(model.parameter(nm)->value);
+      width += (r.box[c].upper() - r.box[c].lower()) / (v > 0 ? v : 1.0);
+    }
+    if (!res.built || width < best) {
+      best = width;
+      res = r;
+    }
+  }
+  if (res.built) res.note += "; windows tried: " + std::to_string(windows.size()) + ", the narrowest reported";
+  return res;
+}
+
+}  // namespace sets

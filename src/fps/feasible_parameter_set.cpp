@@ -1,0 +1,502 @@
+#include "sets/fps/feasible_parameter_set.hpp"
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <set>
+#include <sstream>
+
+#include "sets/core/error.hpp"
+#include "sets/numeric/linear_program.hpp"
+#include "numeric/certified_extent.hpp"
+
+namespace sets {
+
+// ---------------------------------------------------------------- the set
+
+FeasibleParameterSet::FeasibleParameterSet(int dimension) : p_(dimension) {
+  if (dimension <= 0) throw InputError("FeasibleParameterSet: dimension must be positive");
+  Phi_.resize(0, dimension);
+}
+
+FeasibleParameterSet FeasibleParameterSet::from_data(const Eigen::Ref<const Eigen::MatrixXd>& Phi,
+                                                     const Eigen::Ref<const Eigen::VectorXd>& y,
+                                                     const Eigen::Ref<const Eigen::VectorXd>& delta) {
+  if (Phi.rows() != y.size() || delta.size() != y.size())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " regressor rows, " +
+                     std::to_string(y.size()) + " outputs and " + std::to_string(delta.size()) +
+                     " error bounds: the lengths must match");
+  if (Phi.rows() < Phi.cols())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
+                     std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
+  FeasibleParameterSet f(static_cast<int>(Phi.cols()));
+  f.Phi_.resize(Phi.rows(), Phi.cols());
+  f.Y_.resize(Phi.rows());
+  f.n_ = Phi.rows();
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+    for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+      if (!std::isfinite(Phi(t, j)))
+        throw InputError("FeasibleParameterSet: sample " + std::to_string(t) + ", regressor entry " +
+                         std::to_string(j) + " is not finite");
+      f.Phi_(t, j) = Interval(Phi(t, j));
+    }
+    if (!std::isfinite(y[t]))
+      throw InputError("FeasibleParameterSet: sample " + std::to_string(t) + ", output y is not finite");
+    if (!(delta[t] >= 0) || !std::isfinite(delta[t]))
+      throw InputError("FeasibleParameterSet: sample " + std::to_string(t) +
+                       ", error bound delta must be finite and >= 0 (got " + std::to_string(delta[t]) + ")");
+    f.Y_[t] = interval_around(y[t], delta[t]);
+  }
+  return f;
+}
+
+FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatrix& Phi,
+                                                              const IntervalVector& Y) {
+  if (Phi.rows() != Y.size())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " regressor rows but " +
+                     std::to_string(Y.size()) + " outputs: the lengths must match");
+  if (Phi.rows() < Phi.cols())
+    throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
+                     std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
+  FeasibleParameterSet f(static_cast<int>(Phi.cols()));
+  // Same checks as add_strip, one allocation.
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+    const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
+    for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+      if (!std::isfinite(Phi(t, j).lower()) || !std::isfinite(Phi(t, j).upper()))
+        throw InputError(where + ", regressor entry " + std::to_string(j) + " is not finite");
+      if (Phi(t, j).lower() != Phi(t, j).upper()) f.eiv_ = true;
+    }
+    if (!std::isfinite(Y[t].lower()) || !std::isfinite(Y[t].upper()))
+      throw InputError(where + ", output bound is not finite");
+  }
+  f.Phi_ = Phi;
+  f.Y_ = Y;
+  f.n_ = Phi.rows();
+  return f;
+}
+
+void FeasibleParameterSet::add_strip(const Eigen::Ref<const Eigen::VectorXd>& phi, double y, double delta) {
+  const std::string where = "FeasibleParameterSet: sample " + std::to_string(size());
+  if (!std::isfinite(y)) throw InputError(where + ", output y is not finite");
+  if (!(delta >= 0) || !std::isfinite(delta))
+    throw InputError(where + ", error bound delta must be finite and >= 0 (got " + std::to_string(delta) + ")");
+  add_strip(to_interval(phi), interval_around(y, delta));
+}
+
+void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& Y) {
+  const std::string where = "FeasibleParameterSet: sample " + std::to_string(size());
+  if (Phi.size() != p_)
+    throw InputError(where + " has " + std::to_string(Phi.size()) + " regressor entries, expected " +
+                     std::to_string(p_));
+  for (Eigen::Index j = 0; j < Phi.size(); ++j) {
+    if (!std::isfinite(Phi[j].lower()) || !std::isfinite(Phi[j].upper()))
+      throw InputError(where + ", regressor entry " + std::to_string(j) + " is not finite");
+    if (Phi[j].lower() != Phi[j].upper()) eiv_ = true;
+  }
+  if (!std::isfinite(Y.lower()) || !std::isfinite(Y.upper()))
+    throw InputError(where + ", output bound is not finite");
+  if (n_ == Phi_.rows()) {  // grow geometrically: a loop of add_strip stays linear in N
+    const Eigen::Index capacity = std::max<Eigen::Index>(16, 2 * n_);
+    Phi_.conservativeResize(capacity, p_);
+    Y_.conservativeResize(capacity);
+  }
+  Phi_.row(n_) = Phi.transpose();
+  Y_[n_] = Y;
+  ++n_;
+}
+
+BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
+  if (theta.size() != p_) throw InputError("FeasibleParameterSet::contains: wrong dimension");
+  BoolInterval result = BoolInterval::yes;
+  for (Eigen::Index t = 0; t < n_; ++t) {
+    // The range of phi^T theta over the regressor box is [lo_true, hi_true]; L and U enclose them.
+    Interval L(0.0), U(0.0);
+    for (int j = 0; j < p_; ++j) {
+      const Interval a = Phi_(t, j).lower() * Interval(theta[j]);
+      const Interval b = Phi_(t, j).upper() * Interval(theta[j]);
+      const bool pos = theta[j] >= 0;
+      L += pos ? a : b;
+      U += pos ? b : a;
+    }
+    if (L.lower() > Y_[t].upper() || U.upper() < Y_[t].lower()) return BoolInterval::no;
+    if (!(L.upper() <= Y_[t].upper() && U.lower() >= Y_[t].lower())) result = BoolInterval::unknown;
+  }
+  return result;
+}
+
+Eigen::VectorXd FeasibleParameterSet::least_squares() const {
+  const Eigen::MatrixXd A = midpoint(IntervalMatrix(regressors()));
+  const Eigen::VectorXd y = midpoint(IntervalVector(outputs()));
+  return A.colPivHouseholderQr().solve(y);
+}
+
+namespace {
+
+// Row coefficients of sample t in orthant s: the minimising (lower) and maximising (upper) ends.
+void orthant_rows(const Eigen::Ref<const IntervalMatrix>& Phi, Eigen::Index t, const Orthant& s, Eigen::VectorXd& lo_row,
+                  Eigen::VectorXd& hi_row) {
+  const Eigen::Index p = Phi.cols();
+  lo_row.resize(p);
+  hi_row.resize(p);
+  for (Eigen::Index j = 0; j < p; ++j) {
+    const bool pos = s.empty() || s[static_cast<std::size_t>(j)] > 0;
+    lo_row[j] = pos ? Phi(t, j).lower() : Phi(t, j).upper();
+    hi_row[j] = pos ? Phi(t, j).upper() : Phi(t, j).lower();
+  }
+}
+
+}  // namespace
+
+HPolytope FeasibleParameterSet::orthant_polytope(const Orthant& s) const {
+  if (!s.empty() && static_cast<int>(s.size()) != p_)
+    throw InputError("orthant_polytope: orthant has the wrong dimension");
+  if (s.empty() && eiv_)
+    throw InputError("orthant_polytope: interval regressors need an orthant");
+  const Eigen::Index N = n_;
+  const Eigen::Index extra = s.empty() ? 0 : p_;
+  Eigen::MatrixXd A(2 * N + extra, p_);
+  Eigen::VectorXd b(2 * N + extra);
+  Eigen::VectorXd lo_row, hi_row;
+  for (Eigen::Index t = 0; t < N; ++t) {
+    orthant_rows(Phi_, t, s, lo_row, hi_row);
+    A.row(2 * t) = lo_row.transpose();
+    b[2 * t] = Y_[t].upper();
+    A.row(2 * t + 1) = -hi_row.transpose();
+    b[2 * t + 1] = -Y_[t].lower();
+  }
+  for (Eigen::Index j = 0; j < extra; ++j) {
+    A.row(2 * N + j).setZero();
+    A(2 * N + j, j) = -s[static_cast<std::size_t>(j)];
+    b[2 * N + j] = 0;
+  }
+  return HPolytope(std::move(A), std::move(b));
+}
+
+// ---------------------------------------------------------------- PUIs
+
+namespace {
+
+// The LP of one orthant piece. With many samples only a working set of them is in the LP
+// (constraint generation): after each solve the optimum is checked against every sample and the
+// most violated ones are added, until none is violated. A working set is a relaxation, so every
+// emptiness verdict and every safe bound it gives holds for the full set; and once no sample is
+// violated, the relaxation's optimum is the full optimum (tightness is not lost).
+class OrthantLp {
+ public:
+  OrthantLp(const FeasibleParameterSet& fps, const Orthant& s, bool working_set, bool warm)
+      : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(warm) {
+    const int p = fps.dimension(), N = fps.size();
+    for (int j = 0; j < p; ++j) {
+      if (s.empty()) continue;
+      if (s[static_cast<std::size_t>(j)] > 0)
+        lp_.set_variable_bounds(j, 0, inf);
+      else
+        lp_.set_variable_bounds(j, -inf, 0);
+    }
+    lo_.resize(N, p);
+    hi_.resize(N, p);
+    ylo_.resize(N);
+    yhi_.resize(N);
+    Eigen::VectorXd lo_row, hi_row;
+    for (int t = 0; t < N; ++t) {
+      orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
+      lo_.row(t) = lo_row.transpose();
+      hi_.row(t) = hi_row.transpose();
+      ylo_[t] = fps.outputs()[t].lower();
+      yhi_[t] = fps.outputs()[t].upper();
+    }
+    const int start = working_set ? std::min(N, 10 * p + 10) : N;
+    if (start == N) {
+      for (int t = 0; t < N; ++t) add_sample(t);
+    } else {
+      // An evenly spread starting set; the rest come in as they are violated.
+      for (int k = 0; k < start; ++k) add_sample(static_cast<int>(static_cast<long>(k) * N / start));
+    }
+  }
+
+  LinearProgram& lp() { return lp_; }
+  bool complete() const { return added_ == static_cast<int>(in_.size()); }
+
+  /// Solves the current objective over the full set: re-solves after adding violated samples.
+  LpSolution solve(int& lps) {
+    for (;;) {
+      if (!warm_) lp_.reset_basis();
+      LpSolution sol = lp_.solve();
+      ++lps;
+      if (sol.status == LpStatus::infeasible || complete()) return sol;
+      if (sol.status == LpStatus::unbounded) {
+        // The relaxation may be unbounded where the full set is not: take every sample.
+        for (int t = 0; t < static_cast<int>(in_.size()); ++t)
+          if (!in_[static_cast<std::size_t>(t)]) add_sample(t);
+        continue;
+      }
+      if (add_violated(sol.x) == 0) return sol;
+    }
+  }
+
+ private:
+  void add_sample(int t) {
+    in_[static_cast<std::size_t>(t)] = 1;
+    ++added_;
+    const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
+    if (lo_row == hi_row) {
+      lp_.add_row(lo_row, ylo_[t], yhi_[t]);
+    } else {
+      lp_.add_row(lo_row, -inf, yhi_[t]);
+      lp_.add_row(hi_row, ylo_[t], inf);
+    }
+  }
+
+  // Adds the samples the point x violates most; returns how many were added.
+  int add_violated(const Eigen::VectorXd& x) {
+    const Eigen::VectorXd a = lo_ * x, b = hi_ * x;
+    std::vector<std::pair<double, int>> violated;
+    for (Eigen::Index t = 0; t < a.size(); ++t) {
+      if (in_[static_cast<std::size_t>(t)]) continue;
+      const double v = std::max(a[t] - yhi_[t], ylo_[t] - b[t]);
+      const double tol = 1e-9 * (1 + std::abs(yhi_[t]) + std::abs(ylo_[t]));
+      if (v > tol) violated.emplace_back(v, static_cast<int>(t));
+    }
+    const std::size_t k = std::min<std::size_t>(violated.size(), 60 + 4 * static_cast<std::size_t>(x.size()));
+    std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(k), violated.end(),
+                      [](const auto& u, const auto& v) { return u.first > v.first; });
+    for (std::size_t i = 0; i < k; ++i) add_sample(violated[i].second);
+    return static_cast<int>(k);
+  }
+
+  LinearProgram lp_;
+  std::vector<char> in_;
+  bool warm_;
+  int added_ = 0;
+  Eigen::MatrixXd lo_, hi_;  // orthant rows of every sample
+  Eigen::VectorXd ylo_, yhi_;
+};
+
+struct OrthantOutcome {
+  OrthantStatus status = OrthantStatus::unknown;
+  IntervalVector box;
+  Eigen::VectorXd float_lo, float_hi;  // floating-point LP ends (for the Remark-2 zero test)
+  Eigen::MatrixXd lower_points, upper_points;
+  std::vector<double> maxima;          // bounds on max d^T theta over this orthant piece
+  bool certified = false;
+  int lps = 0;
+};
+
+OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
+                             const std::vector<Eigen::VectorXd>& directions) {
+  OrthantLp o(fps, s, options.working_set, options.warm_start);
+  // The orthant's sign constraints are variable bounds of the LP, so ends on a coordinate face
+  // are exact and need no artificial face there.
+  const detail::Extent e =
+      detail::certified_extent(o.lp(), [&](int& lps) { return o.solve(lps); }, directions, options.safe);
+  OrthantOutcome out;
+  out.lps = e.lps;
+  out.status = e.status == detail::ExtentStatus::feasible ? OrthantStatus::feasible
+               : e.status == detail::ExtentStatus::empty  ? OrthantStatus::empty
+                                                          : OrthantStatus::unknown;
+  if (out.status != OrthantStatus::feasible) return out;
+  out.float_lo = e.float_lo;
+  out.float_hi = e.float_hi;
+  out.lower_points = e.lower_points;
+  out.upper_points = e.upper_points;
+  out.maxima = e.maxima;
+  out.certified = e.certified;
+  out.box = make_box(e.lo, e.hi);
+  return out;
+}
+
+Orthant sign_orthant(const Eigen::VectorXd& theta) {
+  Orthant s(static_cast<std::size_t>(theta.size()));
+  for (Eigen::Index j = 0; j < theta.size(); ++j) s[static_cast<std::size_t>(j)] = theta[j] < 0 ? -1 : 1;
+  return s;
+}
+
+}  // namespace
+
+std::vector<Orthant> all_orthants(int p) {
+  if (p > 20) throw UnsupportedError("all_orthants: 2^" + std::to_string(p) + " orthants is too many");
+  std::vector<Orthant> out;
+  for (unsigned long mask = 0; mask < (1ul << p); ++mask) {
+    Orthant s(static_cast<std::size_t>(p));
+    for (int j = 0; j < p; ++j) s[static_cast<std::size_t>(j)] = (mask >> j) & 1 ? -1 : 1;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+namespace {
+
+// PUIs and, from the same LPs, bounds on max d^T theta for each direction (`maxima`): the
+// maximum over the orthant pieces that pui() visits.
+PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
+                  const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima, const char* what) {
+  const int p = fps.dimension();
+  if (fps.size() < p)
+    throw InputError(std::string(what) + ": " + std::to_string(fps.size()) + " samples for " + std::to_string(p) +
+                     " parameters: need at least as many samples as parameters");
+  for (const auto& d : directions)
+    if (d.size() != p)
+      throw InputError(std::string(what) + ": a direction has " + std::to_string(d.size()) + " entries, expected " +
+                       std::to_string(p));
+  maxima.assign(directions.size(), -inf);
+  PuiResult result;
+  result.lower_points.resize(p, p);
+  result.upper_points.resize(p, p);
+  bool any_feasible = false;
+  bool all_certified = true;
+
+  auto absorb = [&](const Orthant& s, const OrthantOutcome& oc) {
+    result.lp_solves += oc.lps;
+    result.orthants.push_back({s, oc.status, oc.box});
+    if (oc.status == OrthantStatus::unknown) {
+      all_certified = false;
+      maxima.assign(directions.size(), inf);  // an orthant we could not decide: no bound
+    }
+    if (oc.status != OrthantStatus::feasible) return;
+    for (std::size_t k = 0; k < directions.size(); ++k) maxima[k] = std::max(maxima[k], oc.maxima[k]);
+    all_certified = all_certified && (oc.certified || !options.safe);
+    for (int l = 0; l < p; ++l) {
+      if (!any_feasible || oc.box[l].lower() < result.box[l].lower())
+        result.lower_points.col(l) = oc.lower_points.col(l);
+      if (!any_feasible || oc.box[l].upper() > result.box[l].upper())
+        result.upper_points.col(l) = oc.upper_points.col(l);
+    }
+    result.box = any_feasible ? hull(result.box, oc.box) : oc.box;
+    any_feasible = true;
+  };
+
+  if (!fps.has_interval_regressors()) {
+    absorb({}, solve_orthant(fps, {}, options, directions));
+  } else if (options.orthants == OrthantSelection::all) {
+    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options, directions));
+  } else {
+    // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
+    // (theta_l = 0), the set may continue into the orthant across that face.
+    std::deque<Orthant> queue{sign_orthant(fps.least_squares())};
+    std::set<Orthant> seen{queue.front()};
+    while (!queue.empty()) {
+      Orthant s = queue.front();
+      queue.pop_front();
+      const OrthantOutcome oc = solve_orthant(fps, s, options, directions);
+      absorb(s, oc);
+      if (oc.status != OrthantStatus::feasible) continue;
+      double scale = 1;
+      for (int j = 0; j < p; ++j) {
+        if (std::isfinite(oc.float_lo[j])) scale = std::max(scale, std::abs(oc.float_lo[j]));
+        if (std::isfinite(oc.float_hi[j])) scale = std::max(scale, std::abs(oc.float_hi[j]));
+      }
+      const double tol = options.zero_tolerance * scale;
+      for (int j = 0; j < p; ++j) {
+        const bool touches = s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol;
+        if (!touches) continue;
+        Orthant next = s;
+        next[static_cast<std::size_t>(j)] = -next[static_cast<std::size_t>(j)];
+        if (seen.insert(next).second) queue.push_back(next);
+      }
+    }
+    // An empty starting orthant says nothing about the others: fall back to all of them.
+    if (!any_feasible && p <= 16) {
+      for (const Orthant& s : all_orthants(p))
+        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options, directions));
+    }
+  }
+
+  result.empty = !any_feasible;
+  if (result.empty) {
+    result.box = IntervalVector();
+    result.guaranteed = all_certified;
+    result.falsification = find_conflict(fps);
+    return result;
+  }
+  result.guaranteed = options.safe && all_certified;
+  result.central = midpoint(result.box);
+  return result;
+}
+
+}  // namespace
+
+PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options) {
+  std::vector<double> none;
+  return explore(fps, options, {}, none, "pui");
+}
+
+FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions,
+                   const PuiOptions& options) {
+  FpsSupport out;
+  PuiResult r = explore(fps, options, directions, out.maxima, "support");
+  out.empty = r.empty;
+  out.guaranteed = r.guaranteed;
+  out.falsification = std::move(r.falsification);
+  out.box = std::move(r.box);
+  out.lp_solves = r.lp_solves;
+  if (out.empty) out.maxima.assign(directions.size(), -inf);
+  return out;
+}
+
+Falsification find_conflict(const FeasibleParameterSet& fps) {
+  // min t  s.t.  Y_lo - t <= phi_c^T theta <= Y_hi + t  (central regressors): the rows that
+  // carry the optimal multipliers are a set of samples that cannot hold together.
+  const int p = fps.dimension();
+  const Eigen::MatrixXd A = midpoint(IntervalMatrix(fps.regressors()));
+  LinearProgram lp(p + 1);
+  lp.set_variable_bounds(p, 0, inf);
+  Eigen::VectorXd row(p + 1);
+  for (int t = 0; t < fps.size(); ++t) {
+    row.head(p) = A.row(t).transpose();
+    row[p] = 1;
+    lp.add_row(row, fps.outputs()[t].lower(), inf);
+    row[p] = -1;
+    lp.add_row(row, -inf, fps.outputs()[t].upper());
+  }
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(p + 1);
+  c[p] = 1;
+  lp.set_objective(c, Sense::minimize);
+  const LpSolution sol = lp.solve();
+  Falsification f;
+  if (sol.status != LpStatus::optimal || sol.objective <= 0) return f;
+  const Eigen::VectorXd theta = sol.x.head(p);
+  std::vector<std::pair<double, int>> support;
+  for (int t = 0; t < fps.size(); ++t) {
+    const double v = A.row(t).dot(theta);
+    const double viol = std::max({fps.outputs()[t].lower() - v, v - fps.outputs()[t].upper(), 0.0});
+    const bool active = std::abs(sol.row_dual[2 * t]) > 1e-12 || std::abs(sol.row_dual[2 * t + 1]) > 1e-12;
+    if (active) support.emplace_back(viol, t);
+  }
+  if (support.empty()) {
+    for (int t = 0; t < fps.size(); ++t) {
+      const double v = A.row(t).dot(theta);
+      support.emplace_back(std::max({fps.outputs()[t].lower() - v, v - fps.outputs()[t].upper(), 0.0}), t);
+    }
+    std::sort(support.rbegin(), support.rend());
+    support.resize(std::min<std::size_t>(support.size(), static_cast<std::size_t>(p + 1)));
+  }
+  std::sort(support.rbegin(), support.rend());
+  for (const auto& [v, t] : support) {
+    f.samples.push_back(t);
+    f.violation.push_back(v);
+  }
+  return f;
+}
+
+std::string Falsification::message() const {
+  std::ostringstream os;
+  os << "the data falsify the model: no parameter value satisfies all samples";
+  if (!samples.empty()) {
+    os << "; these samples conflict (sample: violation of the best compromise):";
+    for (std::size_t i = 0; i < samples.size(); ++i) os << ' ' << samples[i] << ": " << violation[i];
+  }
+  return os.str();
+}
+
+const char* to_string(OrthantStatus s) {
+  switch (s) {
+    case OrthantStatus::feasible: return "feasible";
+    case OrthantStatus::empty: return "empty";
+    default: return "unknown";
+  }
+}
+
+}  // namespace sets

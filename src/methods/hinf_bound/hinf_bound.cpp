@@ -1,0 +1,757 @@
+#include "sets/methods/hinf_bound/hinf_bound.hpp"
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/normal.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "sets/core/error.hpp"
+#include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/numeric/linear_program.hpp"
+
+namespace sets {
+
+namespace {
+constexpr double pi = std::numbers::pi;
+
+std::string num(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+// Polynomial sum_k c_k e^{-ikw} and sum_k k|c_k| (a bound on its derivative in w).
+std::complex<double> poly_at(const Eigen::VectorXd& c, double w) {
+  std::complex<double> s = 0;
+  for (Eigen::Index k = c.size() - 1; k >= 0; --k) s = s * std::polar(1.0, -w) + c[k];
+  return s;
+}
+double weighted_l1(const Eigen::VectorXd& c) {
+  double s = 0;
+  for (Eigen::Index k = 0; k < c.size(); ++k) s += k * std::abs(c[k]);
+  return s;
+}
+// Rigorous lower bound on min_w |c(e^{-iw})| over [0, pi] (real coefficients: |c| is even in w):
+// the minimum over a grid of spacing d, less (d/2) sup|c'|.
+// Second order: g = |c|^2 has |g''| <= 2((sum k|c_k|)^2 + sum|c_k| sum k^2|c_k|), and between two
+// grid points g >= min(ends) - spacing^2/8 sup|g''|.
+double weighted_l2(const Eigen::VectorXd& c) {
+  double s = 0;
+  for (Eigen::Index k = 0; k < c.size(); ++k) s += double(k) * k * std::abs(c[k]);
+  return s;
+}
+double poly_min_modulus(const Eigen::VectorXd& c) {
+  const double l1 = weighted_l1(c), g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * weighted_l2(c));
+  for (int points = 8192; points <= (1 << 19); points *= 8) {  // refine until certified
+    double m = inf;
+    for (int i = 0; i < points; ++i) m = std::min(m, std::norm(poly_at(c, pi * i / (points - 1))));
+    const double d = pi / (points - 1), lo = m - d * d / 8 * g2;
+    if (lo > 0) return std::sqrt(lo);
+  }
+  return 0;
+}
+
+Eigen::VectorXcd roots_of(const Eigen::VectorXd& monic_desc) {
+  // monic_desc = [1, c1, ..., cn]: z^n + c1 z^{n-1} + ... + cn.
+  const Eigen::Index n = monic_desc.size() - 1;
+  if (n <= 0) return Eigen::VectorXcd(0);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) C(0, i) = -monic_desc[i + 1] / monic_desc[0];
+  for (Eigen::Index i = 1; i < n; ++i) C(i, i - 1) = 1;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(C, false);
+  if (es.info() != Eigen::Success) throw NumericalError("root finding failed (companion eigenvalues)");
+  return es.eigenvalues();
+}
+}  // namespace
+
+// ------------------------------------------------------------------ checks
+void check_frequency_grid(const Eigen::Ref<const Eigen::VectorXd>& grid) {
+  if (grid.size() < 2) throw InputError("frequency grid: needs at least 2 frequencies, got " + num(grid.size()));
+  for (Eigen::Index j = 0; j < grid.size(); ++j) {
+    if (!std::isfinite(grid[j]) || grid[j] < 0 || grid[j] > pi)
+      throw InputError("frequency grid: w[" + num(j) + "] = " + num(grid[j]) +
+                       " rad/sample is outside [0, pi]");
+    if (j > 0 && !(grid[j] > grid[j - 1]))
+      throw InputError("frequency grid: w[" + num(j) + "] = " + num(grid[j]) +
+                       " is not larger than w[" + num(j - 1) + "] (the grid must increase strictly)");
+  }
+}
+
+void check_priors(const HinfPriors& p) {
+  if (!(p.rho > 0 && p.rho < 1)) throw InputError("prior rho = " + num(p.rho) + ": the tail decay rate must satisfy 0 < rho < 1");
+  if (!(p.M > 0 && std::isfinite(p.M))) throw InputError("prior M = " + num(p.M) + " must be positive and finite");
+  if (!(p.u_bar >= 0 && std::isfinite(p.u_bar))) throw InputError("prior u_bar = " + num(p.u_bar) + " must be >= 0");
+  if (p.rho_ic > 0 && !(p.rho_ic < 1))
+    throw InputError("prior rho_ic = " + num(p.rho_ic) + ": the impulse-response decay rate must satisfy 0 < rho_ic < 1");
+  if (p.M_ic > 0 && !std::isfinite(p.M_ic)) throw InputError("prior M_ic must be finite");
+}
+
+// ------------------------------------------------------------------ regions
+bool FrequencyRegion::contains(std::complex<double> g, double tol) const {
+  const std::complex<double> d = g - centre;
+  if (shape == RegionShape::rectangle)
+    return std::abs(d.real()) <= half_re * (1 + tol) + tol && std::abs(d.imag()) <= half_im * (1 + tol) + tol;
+  const Eigen::Vector2d x(d.real(), d.imag());
+  return x.dot(Q.ldlt().solve(x)) <= 1 + tol;
+}
+
+double FrequencyRegion::max_distance(std::complex<double> p) const {
+  const std::complex<double> d = centre - p;
+  if (shape == RegionShape::rectangle) {
+    // The farthest point of a rectangle from p is a vertex.
+    const double re = std::abs(d.real()) + half_re, im = std::abs(d.imag()) + half_im;
+    return std::hypot(re, im);
+  }
+  // max |L u + d| over |u| = 1 with Q = L L^T. g(t) = |L u(t) + d|^2 is smooth with
+  // |g''| <= C := 4 ||L^T L||_F + 2 |d| ||L||_F, so max g <= max over samples (spacing s) + C s^2/8.
+  Eigen::LLT<Eigen::Matrix2d> llt(Q + 1e-300 * Eigen::Matrix2d::Identity());
+  const Eigen::Matrix2d L = llt.matrixL();
+  const Eigen::Vector2d dv(d.real(), d.imag());
+  const int n = 2048;
+  double g = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * pi * i / n;
+    g = std::max(g, (L * Eigen::Vector2d(std::cos(t), std::sin(t)) + dv).squaredNorm());
+  }
+  const double s = 2 * pi / n;
+  const double C = 4 * (L.transpose() * L).norm() + 2 * dv.norm() * L.norm();
+  return std::sqrt(g + C * s * s / 8);
+}
+
+std::vector<std::complex<double>> FrequencyRegion::boundary(int points) const {
+  std::vector<std::complex<double>> out;
+  if (shape == RegionShape::rectangle) {
+    const double r[5][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}, {1, 1}};
+    for (auto& c : r) out.push_back(centre + std::complex<double>(c[0] * half_re, c[1] * half_im));
+    return out;
+  }
+  Eigen::LLT<Eigen::Matrix2d> llt(Q + 1e-300 * Eigen::Matrix2d::Identity());
+  const Eigen::Matrix2d L = llt.matrixL();
+  for (int i = 0; i <= points; ++i) {
+    const double t = 2 * pi * i / points;
+    const Eigen::Vector2d x = L * Eigen::Vector2d(std::cos(t), std::sin(t));
+    out.push_back(centre + std::complex<double>(x[0], x[1]));
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ step 1
+UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
+                               const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
+                               const HinfPriors& priors, const UncertaintyOptions& opt,
+                               const Eigen::VectorXd* instrument) {
+  check_frequency_grid(grid);
+  check_priors(priors);
+  const int N = static_cast<int>(u.size());
+  if (y.size() != N) throw InputError("data: u has " + num(N) + " samples but y has " + num(y.size()));
+  if (instrument && instrument->size() != N)
+    throw InputError("data: the instrument (reference) has " + num(instrument->size()) + " samples, u has " + num(N));
+  if (order < 1) throw InputError("basis order n = " + num(order) + " must be at least 1");
+  for (int t = 0; t < N; ++t)
+    if (!std::isfinite(u[t]) || !std::isfinite(y[t])) throw InputError("data: sample " + num(t + 1) + " is not finite");
+  if (opt.noise == NoiseModel::stochastic && !(opt.alpha > 0 && opt.alpha < 1))
+    throw InputError("alpha = " + num(opt.alpha) + " must satisfy 0 < alpha < 1");
+  if (opt.noise == NoiseModel::bounded && !(opt.v_bar >= 0 && std::isfinite(opt.v_bar)))
+    throw InputError("v_bar = " + num(opt.v_bar) + " must be >= 0");
+
+  // Initial-condition envelope |h0(s)| <= M_ic rho_ic^s.
+  double rho_ic = priors.rho_ic > 0 ? priors.rho_ic : priors.rho;
+  double M_ic = priors.M_ic > 0 ? priors.M_ic : priors.M / priors.rho;
+  if (basis.kind() != BasisKind::fir && priors.u_bar > 0 && (priors.rho_ic <= 0 || priors.M_ic <= 0))
+    throw InputError("priors M_ic and rho_ic (impulse-response envelope for the initial conditions) must be given "
+                     "for the " + std::string(to_string(basis.kind())) + " basis when u_bar > 0");
+  auto eic = [&](int t) {  // bound on |sum_{s>=t} h0(s) u(t-s)|, t = 1-based time
+    return priors.u_bar * M_ic * std::pow(rho_ic, t) / (1 - rho_ic);
+  };
+
+  UncertaintySet S;
+  const int nw = static_cast<int>(grid.size());
+  S.frequencies = grid;
+  int t0 = opt.first_sample;
+  if (t0 < 0) t0 = priors.u_bar > 0 ? std::min(N / 4, static_cast<int>(std::ceil(std::log(1e-3) / std::log(rho_ic)))) : 0;
+  const int R = N - t0;
+  if (R < 2 * order + 10)
+    throw InputError("data: " + num(R) + " usable samples (after skipping " + num(t0) + ") are too few for " +
+                     num(order) + " basis functions");
+  int K = opt.tail_terms;
+  if (K < 0) {
+    const double need = std::log(1e-9 * (1 - priors.rho)) / std::log(priors.rho);
+    K = std::clamp(static_cast<int>(std::ceil(need)) - order, 0, 400);
+  }
+  S.first_sample = t0;
+  S.tail_terms = K;
+  S.rows = R;
+  S.beta1 = basis.beta1(priors.M, priors.rho);
+  S.basis = basis;
+  {  // sup|T'| <= sum_{k>=n} M rho^k (D0 + floor(k/m) H0 L'), floor(k/m) <= k/m, closed form.
+    const double r = priors.rho, rn = priors.M * std::pow(r, order);
+    S.tail_beta = rn * (basis.front_derivative_bound() / (1 - r) +
+                        basis.hinf_bound() * basis.allpass_derivative_bound() / basis.block() *
+                            (order / (1 - r) + r / ((1 - r) * (1 - r))));
+  }
+
+  const int n = order;
+  const Eigen::MatrixXd X = basis.responses(u, n + K);
+  const Eigen::MatrixXd Phi = X.block(t0, 0, R, n);
+  const Eigen::MatrixXd Xt = X.block(t0, n, R, K);
+  const Eigen::VectorXd yr = y.segment(t0, R);
+  const Eigen::MatrixXd Z = instrument ? Eigen::MatrixXd(basis.responses(*instrument, n).block(t0, 0, R, n)) : Phi;
+  const Eigen::MatrixXd Smat = Z.transpose() * Phi;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Smat);
+  if (qr.rank() < n)
+    throw InputError("data: the input is not persistently exciting for " + num(n) + " basis functions (rank " +
+                     num(qr.rank()) + ")");
+  S.theta = qr.solve(Z.transpose() * yr);
+
+  // Frequency responses of the model part and of the evaluated tail.
+  Eigen::MatrixXd Gre(n, nw), Gim(n, nw);
+  Eigen::MatrixXcd Ft(K, nw);
+  S.estimate.resize(nw);
+  for (int j = 0; j < nw; ++j) {
+    const Eigen::VectorXcd F = basis.frequency_responses(grid[j], n + K);
+    Gre.col(j) = F.head(n).real();
+    Gim.col(j) = F.head(n).imag();
+    Ft.col(j) = F.tail(K);
+    S.estimate[j] = F.head(n).transpose() * S.theta.cast<std::complex<double>>();
+  }
+  const double H0 = basis.hinf_bound();
+  const double rem = priors.M * std::pow(priors.rho, n + K) / (1 - priors.rho);  // sum_{k>=n+K} M rho^k
+  Eigen::VectorXd tailcoef(K);
+  for (int k = 0; k < K; ++k) tailcoef[k] = priors.M * std::pow(priors.rho, n + k);
+  S.tail_coefficients = tailcoef;
+  S.tail_remainder = rem * H0;
+  Eigen::VectorXd ic(R);
+  for (int i = 0; i < R; ++i) ic[i] = eic(t0 + i + 1);
+  S.terms.resize(nw);
+  S.regions.resize(nw);
+  for (int j = 0; j < nw; ++j) {  // f4: the tail itself, sum_k M rho^k |Re/Im F_k|
+    double re = rem * H0, im = rem * H0;
+    for (int k = 0; k < K; ++k) {
+      re += tailcoef[k] * std::abs(Ft(k, j).real());
+      im += tailcoef[k] * std::abs(Ft(k, j).imag());
+    }
+    S.terms[j].tail_re = re;
+    S.terms[j].tail_im = im;
+  }
+
+  if (opt.noise == NoiseModel::bounded) {
+    // Strips |y(t) - phi(t)^T theta| <= v_bar + e_ic(t) + e_tail(t); |x_k(t)| <= ||u_{1..t}||_2.
+    Eigen::VectorXd delta(R);
+    double usq = 0;
+    for (int t = 0; t < t0; ++t) usq += u[t] * u[t];
+    for (int i = 0; i < R; ++i) {
+      usq += u[t0 + i] * u[t0 + i];
+      delta[i] = opt.v_bar + ic[i] + tailcoef.dot(Xt.row(i).cwiseAbs().transpose()) + rem * std::sqrt(usq);
+    }
+    const auto fps = FeasibleParameterSet::from_data(Phi, yr, delta);
+    // Extremes of Re and Im Gamma(w_j)^T theta over the FPS: 4 directions per frequency, all from
+    // one working-set LP (row generation) with safe bounds, as for the PUIs. Ordered as four
+    // sweeps along the grid (max Re, min Re, max Im, min Im): neighbouring frequencies have
+    // nearby optima, so each LP starts close to its optimal basis.
+    std::vector<Eigen::VectorXd> dirs;
+    dirs.reserve(static_cast<std::size_t>(4 * nw));
+    for (const Eigen::MatrixXd* G : {&Gre, &Gim})
+      for (double sign : {1.0, -1.0})
+        for (int j = 0; j < nw; ++j) dirs.push_back(sign * G->col(j));
+    const FpsSupport sup = support(fps, dirs);
+    S.lp_solves += sup.lp_solves;
+    if (sup.empty) {
+      S.empty = true;
+      S.falsification = sup.falsification.message();
+      return S;
+    }
+    for (int l = 0; l < n; ++l)
+      if (!std::isfinite(sup.box[l].lower()) || !std::isfinite(sup.box[l].upper()))
+        throw NumericalError("bounded noise: parameter " + num(l) + " is unbounded (input not exciting enough)");
+    // The PUI box X contains the FPS, hence theta0: centre and radius for b_data (rounded up).
+    S.theta_ref.resize(n);
+    S.theta_radius.resize(n);
+    for (int l = 0; l < n; ++l) {
+      const double lo = sup.box[l].lower(), hi = sup.box[l].upper(), c = 0.5 * (lo + hi);
+      S.theta_ref[l] = c;
+      S.theta_radius[l] = std::nextafter(std::max(hi - c, c - lo) * (1 + 1e-15), inf);
+    }
+    auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
+      const double v = sup.maxima[static_cast<std::size_t>(k)];
+      if (!std::isfinite(v)) throw NumericalError("bounded noise: could not certify an LP bound");
+      return v;
+    };
+    for (int j = 0; j < nw; ++j) {
+      const double re_hi = extreme(j), re_lo = -extreme(nw + j);
+      const double im_hi = extreme(2 * nw + j), im_lo = -extreme(3 * nw + j);
+      FrequencyRegion& P = S.regions[j];
+      P.shape = RegionShape::rectangle;
+      P.centre = {0.5 * (re_lo + re_hi), 0.5 * (im_lo + im_hi)};
+      // Half widths rounded up: the centre is a rounded midpoint.
+      P.half_re = std::nextafter(0.5 * (re_hi - re_lo) + std::abs(P.centre.real()) * 4e-16, inf) + S.terms[j].tail_re;
+      P.half_im = std::nextafter(0.5 * (im_hi - im_lo) + std::abs(P.centre.imag()) * 4e-16, inf) + S.terms[j].tail_im;
+    }
+    return S;
+  }
+
+  // Stochastic: sensitivity vectors c with Re/Im(Gbar - G0 model part) = c^T (tail + ic + v).
+  Eigen::MatrixXd G2(n, 2 * nw);
+  G2 << Gre, Gim;
+  const Eigen::MatrixXd Yc = Smat.transpose().colPivHouseholderQr().solve(G2);
+  const Eigen::MatrixXd C = Z * Yc;  // R x 2nw
+  const Eigen::MatrixXd XtC = Xt.transpose() * C;
+  const double unorm = u.norm();
+
+  // Noise covariance from the residuals, Bartlett window, degrees-of-freedom correction.
+  const Eigen::VectorXd res = yr - Phi * S.theta;
+  const int L = opt.max_lag >= 0 ? opt.max_lag : std::min(100, R / 10);
+  Eigen::VectorXd Rv(L + 1);
+  for (int tau = 0; tau <= L; ++tau)
+    Rv[tau] = res.head(R - tau).dot(res.tail(R - tau)) / R * R / (R - n) * (1.0 - double(tau) / (L + 1));
+  S.noise_variance = Rv[0];
+  auto quad = [&](const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b) {
+    double s = Rv[0] * a.dot(b);
+    for (int tau = 1; tau <= L; ++tau)
+      s += Rv[tau] * (a.head(R - tau).dot(b.tail(R - tau)) + b.head(R - tau).dot(a.tail(R - tau)));
+    return s;
+  };
+  const double level = opt.simultaneous ? 1 - (1 - opt.alpha) / nw : opt.alpha;
+  S.level = level;
+  {  // Coefficient box for b_data: theta_hat_k - theta0_k = c_k^T (tail + ic + v), c_k = Z S^-T e_k,
+     // bounded like a frequency row; Bonferroni over k at total failure share * (1 - alpha).
+    if (!(opt.coefficient_share > 0)) throw InputError("coefficient_share must be > 0");
+    const double fail = opt.coefficient_share * (1 - opt.alpha);
+    S.coefficient_level = std::max(0.0, 1 - fail);
+    const boost::math::normal normal01;
+    const double zt = boost::math::quantile(normal01, 1 - fail / (2 * n));
+    const Eigen::MatrixXd Ct = Z * Smat.transpose().colPivHouseholderQr().solve(Eigen::MatrixXd::Identity(n, n));
+    const Eigen::MatrixXd XtCt = Xt.transpose() * Ct;
+    S.theta_ref = S.theta;
+    S.theta_radius.resize(n);
+    for (int k = 0; k < n; ++k) {
+      const auto c = Ct.col(k);
+      S.theta_radius[k] = zt * std::sqrt(std::max(0.0, quad(c, c))) + tailcoef.dot(XtCt.col(k).cwiseAbs()) +
+                          rem * c.norm() * H0 * unorm + c.cwiseAbs().dot(ic);
+    }
+  }
+  const boost::math::normal normal;
+  const double zq = boost::math::quantile(normal, 1 - (1 - level) / 4);  // two-sided, Re and Im
+  const double chi2 = -2 * std::log(1 - level);                            // chi^2_2 quantile
+  for (int j = 0; j < nw; ++j) {
+    const auto cre = C.col(j), cim = C.col(nw + j);
+    const double Pre = std::max(0.0, quad(cre, cre)), Pim = std::max(0.0, quad(cim, cim));
+    double Pri = quad(cre, cim);
+    ErrorTerms& T = S.terms[j];
+    const double sc = opt.shape == RegionShape::rectangle ? zq : std::sqrt(chi2);
+    T.noise_re = sc * std::sqrt(Pre);
+    T.noise_im = sc * std::sqrt(Pim);
+    T.tail_est_re = tailcoef.dot(XtC.col(j).cwiseAbs()) + rem * cre.norm() * H0 * unorm;
+    T.tail_est_im = tailcoef.dot(XtC.col(nw + j).cwiseAbs()) + rem * cim.norm() * H0 * unorm;
+    T.ic_re = cre.cwiseAbs().dot(ic);
+    T.ic_im = cim.cwiseAbs().dot(ic);
+    const double dre = T.tail_est_re + T.ic_re + T.tail_re, dim = T.tail_est_im + T.ic_im + T.tail_im;
+    FrequencyRegion& P = S.regions[j];
+    P.centre = S.estimate[j];
+    P.shape = opt.shape;
+    if (opt.shape == RegionShape::rectangle) {
+      P.half_re = T.noise_re + dre;
+      P.half_im = T.noise_im + dim;
+    } else {
+      // Noise ellipse (chi2 P) plus the box [+-dre] x [+-dim], itself inside the ellipse with
+      // Q2 = 2 diag(dre^2, dim^2); Minkowski sum of two ellipses inside (1+1/p) Q1 + (1+p) Q2.
+      Pri = std::clamp(Pri, -std::sqrt(Pre * Pim), std::sqrt(Pre * Pim));
+      Eigen::Matrix2d Q1;
+      Q1 << Pre, Pri, Pri, Pim;
+      Q1 *= chi2;
+      Eigen::Matrix2d Q2 = Eigen::Vector2d(2 * dre * dre, 2 * dim * dim).asDiagonal();
+      if (Q2.trace() == 0)
+        P.Q = Q1;
+      else if (Q1.trace() == 0)
+        P.Q = Q2;
+      else {
+        const double p = std::sqrt(Q1.trace() / Q2.trace());
+        P.Q = (1 + 1 / p) * Q1 + (1 + p) * Q2;
+      }
+      P.Q += 1e-15 * P.Q.trace() * Eigen::Matrix2d::Identity();  // keep it positive definite
+      P.half_re = std::sqrt(P.Q(0, 0));
+      P.half_im = std::sqrt(P.Q(1, 1));
+    }
+  }
+  return S;
+}
+
+// ------------------------------------------------------------------ rational model
+RationalModel hinf_example_system() {
+  const double r1 = 0.97, w1 = 0.6, r2 = 0.8, w2 = 0.9;
+  const Eigen::Vector3d d1(1, -2 * r1 * std::cos(w1), r1 * r1), d2(1, -2 * r2 * std::cos(w2), r2 * r2);
+  RationalModel G;
+  G.a = Eigen::VectorXd::Zero(5);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) G.a[i + k] += d1[i] * d2[k];  // the product of the two quadratics
+  G.b = Eigen::VectorXd::Zero(3);
+  G.b << 0, 0.05, 0.025;
+  return G;
+}
+
+std::complex<double> RationalModel::operator()(double w) const { return poly_at(b, w) / poly_at(a, w); }
+
+std::complex<double> RationalModel::derivative(double w) const {
+  std::complex<double> db = 0, da = 0;
+  for (Eigen::Index k = 1; k < b.size(); ++k) db += -std::complex<double>(0, k) * b[k] * std::polar(1.0, -k * w);
+  for (Eigen::Index k = 1; k < a.size(); ++k) da += -std::complex<double>(0, k) * a[k] * std::polar(1.0, -k * w);
+  const auto B = poly_at(b, w), A = poly_at(a, w);
+  return (db * A - B * da) / (A * A);
+}
+
+Eigen::VectorXcd RationalModel::poles() const { return roots_of(a); }
+
+bool RationalModel::stable(double margin) const {
+  const auto p = poles();
+  for (Eigen::Index i = 0; i < p.size(); ++i)
+    if (!(std::abs(p[i]) < 1 - margin)) return false;
+  return true;
+}
+
+std::string RationalModel::to_string() const {
+  std::ostringstream os;
+  os.precision(6);
+  auto poly = [&](const Eigen::VectorXd& c) {
+    std::ostringstream p;
+    p.precision(6);
+    for (Eigen::Index k = 0; k < c.size(); ++k) {
+      if (k) p << (c[k] < 0 ? " - " : " + ") << std::abs(c[k]) << " z^-" << k;
+      else p << c[k];
+    }
+    return p.str();
+  };
+  os << "(" << poly(b) << ") / (" << poly(a) << ")";
+  return os.str();
+}
+
+// ------------------------------------------------------------------ step 2
+NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
+  if (S.empty) throw InputError("nominal model: the uncertainty set is empty (data falsify the priors)");
+  const int nw = static_cast<int>(S.frequencies.size());
+  const int ng = o.order;
+  if (ng < 0) throw InputError("nominal order " + num(ng) + " must be >= 0");
+  if (2 * ng + 1 > 2 * nw)
+    throw InputError("nominal order " + num(ng) + " cannot be met: " + num(2 * ng + 1) +
+                     " coefficients but only " + num(nw) + " frequencies (" + num(2 * nw) + " real equations)");
+  if (ng > 30) throw InputError("nominal order " + num(ng) + " is above the supported 30 (stability check by roots)");
+  if (o.polygon_sides < 3) throw InputError("polygon sides K = " + num(o.polygon_sides) + " must be >= 3");
+  Eigen::VectorXd W1 = o.weight.size() ? o.weight : Eigen::VectorXd::Ones(nw);
+  if (W1.size() != nw) throw InputError("nominal weight: " + num(W1.size()) + " values for " + num(nw) + " frequencies");
+
+  NominalFit fit;
+  fit.polygon_sides = o.polygon_sides;
+  fit.centres.resize(nw);
+  for (int j = 0; j < nw; ++j) fit.centres[j] = S.regions[j].centre;  // Chebyshev centres (16)
+  const auto& w = S.frequencies;
+  const int K = o.polygon_sides, nv = 2 * ng + 2, it_max = std::max(1, o.iterations);
+  const int nd = 256;  // dense grid for the stability (positive-real) constraint
+  auto true_error = [&](const RationalModel& m) {
+    double e = 0;
+    for (int j = 0; j < nw; ++j) e = std::max(e, W1[j] * std::abs(fit.centres[j] - m(w[j])));
+    return e;
+  };
+  Eigen::VectorXd aprev = Eigen::VectorXd::Ones(1);
+  aprev.conservativeResize(ng + 1);
+  aprev.tail(ng).setZero();
+  double best = inf;
+  for (int it = 0; it < it_max; ++it) {
+    LinearProgram lp(nv);
+    lp.set_variable_bounds(nv - 1, 0, inf);
+    for (int i = 1; i <= ng; ++i) {  // coefficients of a stable monic polynomial: |a_i| <= C(ng, i)
+      double binom = 1;
+      for (int r = 0; r < i; ++r) binom = binom * (ng - r) / (r + 1);
+      lp.set_variable_bounds(i - 1, -binom, binom);
+    }
+    for (int j = 0; j < nw; ++j) {
+      const double s = W1[j] / std::abs(poly_at(aprev, w[j]));
+      for (int k = 0; k < K; ++k) {
+        const std::complex<double> rot = std::polar(1.0, -2 * pi * k / K);
+        Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
+        for (int i = 1; i <= ng; ++i) row[i - 1] = s * (std::polar(1.0, -i * w[j]) * fit.centres[j] * rot).real();
+        for (int i = 0; i <= ng; ++i) row[ng + i] = -s * (std::polar(1.0, -i * w[j]) * rot).real();
+        row[nv - 1] = -1;
+        lp.add_row(row, -inf, -s * (fit.centres[j] * rot).real());
+      }
+    }
+    for (int d = 0; d < nd && ng > 0; ++d) {  // Re(A / A_prev) >= 0.01 keeps the winding number
+      const double wd = pi * d / (nd - 1);
+      const std::complex<double> ap = std::conj(poly_at(aprev, wd));
+      Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
+      for (int i = 1; i <= ng; ++i) row[i - 1] = (std::polar(1.0, -i * wd) * ap).real();
+      lp.add_row(row, 0.01 * std::norm(ap) - ap.real(), inf);
+    }
+    lp.set_objective_coordinate(nv - 1, Sense::minimize);
+    const LpSolution sol = lp.solve();
+    if (sol.status != LpStatus::optimal) break;
+    RationalModel m;
+    m.a = Eigen::VectorXd::Ones(ng + 1);
+    m.a.tail(ng) = sol.x.head(ng);
+    m.b = sol.x.segment(ng, ng + 1);
+    fit.iterations = it + 1;
+    if (!m.stable(1e-4)) break;  // the positive-real constraint held only on the dense grid
+    const double e = true_error(m);
+    const bool improved = e < best;
+    if (improved) {
+      const double old = best;
+      best = e;
+      fit.model = m;
+      fit.max_error = e;
+      if (old - e < 1e-7 * e) break;
+    }
+    aprev = m.a;
+  }
+  if (!std::isfinite(best))
+    throw NumericalError("nominal model: no stable model of order " + num(ng) + " was found");
+  return fit;
+}
+
+Eigen::VectorXd additive_error(const UncertaintySet& S, const RationalModel& m) {
+  Eigen::VectorXd d(S.frequencies.size());
+  for (Eigen::Index j = 0; j < d.size(); ++j) d[j] = S.regions[j].max_distance(m(S.frequencies[j]));
+  return d;
+}
+
+// ------------------------------------------------------------------ step 3
+std::complex<double> WeightFit::inverse(double w) const { return poly_at(h, w); }
+
+WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen::Ref<const Eigen::VectorXd>& delta,
+                     const WeightOptions& o) {
+  check_frequency_grid(grid);
+  const int nw = static_cast<int>(grid.size());
+  if (delta.size() != nw) throw InputError("weight: " + num(delta.size()) + " error bounds for " + num(nw) + " frequencies");
+  if (o.degree < 0 || o.degree > 60) throw InputError("weight degree " + num(o.degree) + " must be in [0, 60]");
+  for (int j = 0; j < nw; ++j)
+    if (!(delta[j] >= 0 && std::isfinite(delta[j]))) throw InputError("weight: delta[" + num(j) + "] is not a finite value >= 0");
+  Eigen::VectorXd W1 = o.weight.size() ? o.weight : Eigen::VectorXd::Ones(nw);
+  if (W1.size() != nw) throw InputError("weight W1: " + num(W1.size()) + " values for " + num(nw) + " frequencies");
+  const int m = o.degree, nv = m + 2;
+  const double dmax = delta.maxCoeff();
+  if (!(dmax > 0)) throw InputError("weight: every delta is zero");
+  LinearProgram lp(nv);
+  auto cosrow = [&](double w) {
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(nv);
+    for (int k = 0; k <= m; ++k) r[k] = std::cos(k * w);
+    return r;
+  };
+  for (int j = 0; j < nw; ++j) {
+    const double d2 = delta[j] * delta[j];
+    lp.add_row(cosrow(grid[j]), d2, inf);
+    Eigen::VectorXd r = W1[j] * W1[j] * cosrow(grid[j]);
+    r[nv - 1] = -1;
+    lp.add_row(r, -inf, W1[j] * W1[j] * d2);
+  }
+  // |W^-1|^2 >= a quarter of the smallest delta^2 between grid points too: W stays bounded.
+  const int nd = 2048;
+  const double floor = 0.25 * delta.minCoeff() * delta.minCoeff() + 1e-8 * dmax * dmax;
+  for (int d = 0; d < nd; ++d) lp.add_row(cosrow(pi * d / (nd - 1)), floor, inf);
+  lp.set_objective_coordinate(nv - 1, Sense::minimize);
+  const LpSolution sol = lp.solve();
+  if (sol.status != LpStatus::optimal) throw NumericalError("weight: the LP for |W^-1|^2 has no optimum");
+  WeightFit fit;
+  fit.trig = sol.x.head(m + 1);
+  // Positivity on all of [0, pi]: grid minimum less spacing^2/8 sup|P''|.
+  auto P = [&](double w) {
+    double s = 0;
+    for (int k = 0; k <= m; ++k) s += fit.trig[k] * std::cos(k * w);
+    return s;
+  };
+  double pmin = inf;
+  const int nc = 16384;
+  for (int i = 0; i < nc; ++i) pmin = std::min(pmin, P(pi * i / (nc - 1)));
+  const double spacing = pi / (nc - 1);  // |P''| <= sum k^2 |c_k|
+  if (!(pmin - spacing * spacing / 8 * weighted_l2(fit.trig) > 0))
+    throw NumericalError("weight: |W^-1|^2 is not certified positive (grid minimum " + num(pmin) +
+                         ", curvature bound " + num(weighted_l2(fit.trig)) + "); lower the weight degree");
+  // Spectral factor: z^m P(z) has roots in pairs (r, 1/conj r); keep those inside the circle.
+  int mm = m;
+  while (mm > 0 && std::abs(fit.trig[mm]) < 1e-13 * std::abs(fit.trig[0])) --mm;
+  Eigen::VectorXcd inside;
+  if (mm > 0) {
+    Eigen::VectorXd desc(2 * mm + 1);  // descending powers of z
+    for (int k = 0; k <= mm; ++k) desc[mm - k] = desc[mm + k] = k == 0 ? fit.trig[0] : fit.trig[k] / 2;
+    const Eigen::VectorXcd r = roots_of(desc / desc[0]);
+    std::vector<std::complex<double>> v(r.data(), r.data() + r.size());
+    std::sort(v.begin(), v.end(), [](auto x, auto y) { return std::abs(x) < std::abs(y); });
+    inside.resize(mm);
+    for (int i = 0; i < mm; ++i) inside[i] = v[i];
+    if (!(std::abs(v[mm - 1]) < 1)) throw NumericalError("weight: spectral factor has a zero on the unit circle");
+  }
+  Eigen::VectorXcd hc = Eigen::VectorXcd::Zero(mm + 1);
+  hc[0] = 1;
+  for (int i = 0; i < mm; ++i)  // multiply by (1 - r z^-1)
+    for (int k = i + 1; k >= 1; --k) hc[k] -= inside[i] * hc[k - 1];
+  fit.h = hc.real();
+  // Gain: match P in the mean, then scale so |W^-1| >= delta holds on the grid.
+  double num_ = 0, den = 0;
+  for (int i = 0; i < 512; ++i) {
+    const double w = pi * i / 511;
+    num_ += P(w);
+    den += std::norm(poly_at(fit.h, w));
+  }
+  fit.h *= std::sqrt(num_ / den);
+  double scale = 1;
+  for (int j = 0; j < nw; ++j) scale = std::max(scale, delta[j] / std::abs(poly_at(fit.h, grid[j])));
+  fit.h *= scale * (1 + 1e-12);
+  fit.max_gap = 0;
+  for (int j = 0; j < nw; ++j)
+    fit.max_gap = std::max(fit.max_gap, W1[j] * W1[j] * (std::norm(poly_at(fit.h, grid[j])) - delta[j] * delta[j]));
+  return fit;
+}
+
+// ------------------------------------------------------------------ step 4
+namespace {
+// min over w in [lo, hi] of |e^{iw} - p| (|1 - p e^{-iw}|): at the arc point nearest to arg p.
+double arc_distance(std::complex<double> p, double lo, double hi) {
+  const double r = std::abs(p), phi = std::arg(p);
+  double d = 0;  // angular distance from phi (or -phi: real coefficients, conjugate poles) to [lo, hi]
+  for (double f : {phi, -phi}) {
+    const double a = f < lo ? lo - f : (f > hi ? f - hi : 0);
+    d = f == phi ? a : std::min(d, a);
+  }
+  d = std::min(d, pi);
+  return std::max(0.0, std::sqrt(std::max(0.0, 1 + r * r - 2 * r * std::cos(d))) - 1e-12);
+}
+// Local bounds on [lo, hi] for b(z^-1)/a(z^-1) with roots `poles` of a: |a| >= prod dist(p_i, arc).
+struct LocalTf {
+  double sup = inf, der = inf;
+};
+LocalTf local_tf(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen::VectorXcd& poles, double lo, double hi) {
+  double amin = 1;
+  for (Eigen::Index i = 0; i < poles.size(); ++i) amin *= arc_distance(poles[i], lo, hi);
+  LocalTf t;
+  if (!(amin > 0)) return t;
+  t.sup = b.cwiseAbs().sum() / amin;
+  t.der = weighted_l1(b) / amin + b.cwiseAbs().sum() * weighted_l1(a) / (amin * amin);
+  return t;
+}
+
+// b_data (docs/methods/hinf-bound.md, section 6): for w in cell_j,
+//   G0(w) - Ghat(w) = [G0(w_j) - Ghat(w_j)] + Delta(w) + r(w),
+//   Delta(w) = (Gamma(w) - Gamma(w_j))^T theta_ref - Ghat(w) + Ghat(w_j)   (known),
+//   |r(w)| <= g(w) = sum_{k<n} radius_k |F_k(w) - F_k(w_j)| + sum_{k>=n} M rho^k |F_k(w) - F_k(w_j)|,
+// so |G0 - Ghat| <= maxdist_{P(w_j)}(Ghat(w_j) - Delta(w)) + g(w). Each cell is cut into pieces;
+// on a piece of half width eta around w_i every term is bounded by its value at w_i plus eta times
+// a Lipschitz constant valid on that piece (from the distance of the poles to the piece's arc).
+double data_bound(const UncertaintySet& S, const RationalModel& nominal, const Eigen::VectorXd& h, double Wder,
+                  double Gder, double& kappa) {
+  const int n = static_cast<int>(S.theta_ref.size());
+  if (n == 0 || S.theta_radius.size() != n) {
+    kappa = inf;
+    return inf;
+  }
+  const OrthonormalBasis& basis = S.basis;
+  const int m = basis.block(), K = static_cast<int>(S.tail_coefficients.size());
+  const double D0 = basis.front_derivative_bound(), H0 = basis.hinf_bound(), L0 = basis.allpass_derivative_bound();
+  std::vector<Eigen::VectorXcd> front_poles;
+  for (const auto& f : basis.fronts()) front_poles.push_back(roots_of(f.a));
+  const Eigen::VectorXcd ap_poles = roots_of(basis.allpass().a), nom_poles = roots_of(nominal.a);
+  // Global slope kappa (reported): sum_k radius_k sup|F_k'| + sup|T'|.
+  kappa = S.tail_beta;
+  for (int k = 0; k < n; ++k) kappa += S.theta_radius[k] * (D0 + double(k / m) * H0 * L0);
+  // Weights of |F_k(w) - F_k(w_j)| in g and in the Lipschitz constant of Delta.
+  Eigen::VectorXd wg(n + K), wd(n + K);
+  wg << S.theta_radius, S.tail_coefficients;
+  wd << S.theta_ref.cwiseAbs(), Eigen::VectorXd::Zero(K);
+  const Eigen::VectorXcd th = S.theta_ref.cast<std::complex<double>>();
+  const auto& w = S.frequencies;
+  const int nw = static_cast<int>(w.size()), sub = 64;
+  double b = 0;
+  for (int j = 0; j < nw; ++j) {
+    const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
+    const Eigen::VectorXcd Fj = basis.frequency_responses(w[j], n + K);
+    const std::complex<double> Gr = Fj.head(n).transpose() * th, Gh = nominal(w[j]);
+    const double eta = (hi - lo) / (2 * sub);
+    for (int i = 0; i < sub; ++i) {
+      const double wi = lo + (2 * i + 1) * eta, plo = wi - eta, phi = wi + eta;
+      // Local sup|F_k'| <= Dc + floor(k/m) Hc Lc on the piece (never above the global bound).
+      double Hc = 0, Dc = 0, Lc = 0;
+      for (std::size_t f = 0; f < front_poles.size(); ++f) {
+        const LocalTf t = local_tf(basis.fronts()[f].b, basis.fronts()[f].a, front_poles[f], plo, phi);
+        Hc = std::max(Hc, t.sup);
+        Dc = std::max(Dc, t.der);
+      }
+      for (Eigen::Index q = 0; q < ap_poles.size(); ++q) {
+        const double d = arc_distance(ap_poles[q], plo, phi), r = std::abs(ap_poles[q]);
+        Lc += d > 0 ? (1 - r * r) / (d * d) : inf;
+      }
+      const LocalTf nom = local_tf(nominal.b, nominal.a, nom_poles, plo, phi);
+      const Eigen::VectorXcd Fi = basis.frequency_responses(wi, n + K);
+      double g = 2 * S.tail_remainder, lipg = 0, lipd = std::min(Gder, nom.der);
+      for (int k = 0; k < n + K; ++k) {
+        const double dk = std::min(D0 + double(k / m) * H0 * L0, Dc + double(k / m) * Hc * Lc);
+        g += wg[k] * std::abs(Fi[k] - Fj[k]);
+        lipg += wg[k] * dk;
+        lipd += wd[k] * dk;
+      }
+      const std::complex<double> Gi = Fi.head(n).transpose() * th;
+      const std::complex<double> delta = (Gi - Gr) - (nominal(wi) - Gh);
+      const double dist = S.regions[j].max_distance(Gh - delta) + eta * lipd + g + eta * lipg;
+      const double Wi = 1 / std::abs(poly_at(h, wi)) + eta * Wder;
+      b = std::max(b, Wi * dist);
+    }
+  }
+  return b;
+}
+}  // namespace
+
+BoundResult error_bound(const UncertaintySet& S, const RationalModel& nominal, const Eigen::VectorXd& h) {
+  const auto& w = S.frequencies;
+  const int nw = static_cast<int>(w.size());
+  BoundResult B;
+  B.delta_u.resize(nw);
+  B.lambda.resize(nw);
+  B.beta.resize(nw);
+  // sup-norm bounds (rigorous: grid minimum less a Lipschitz remainder, see poly_min_modulus).
+  const double hmin = poly_min_modulus(h), amin = poly_min_modulus(nominal.a);
+  if (!(hmin > 0)) throw NumericalError("bound: |W^-1| is not certified away from zero");
+  if (!(amin > 0)) throw NumericalError("bound: the nominal denominator is not certified away from zero");
+  const double Wmax = 1 / hmin, Wder = weighted_l1(h) / (hmin * hmin);
+  const double Gder = weighted_l1(nominal.b) / amin + nominal.b.cwiseAbs().sum() * weighted_l1(nominal.a) / (amin * amin);
+  const double s = S.beta1 + Gder;  // sup |d/dw (G - Ghat)|
+  B.b = 0;
+  B.b_grid = 0;
+  B.b_data = data_bound(S, nominal, h, Wder, Gder, B.kappa);
+  for (int j = 0; j < nw; ++j) {
+    const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
+    B.lambda[j] = std::max(w[j] - lo, hi - w[j]);
+    const double delta = S.regions[j].max_distance(nominal(w[j]));
+    B.delta_u[j] = delta / std::abs(poly_at(h, w[j]));
+    // |d/dw W(G - Ghat)| <= |W'| |G - Ghat| + |W| |G' - Ghat'| in the cell of w_j.
+    B.beta[j] = Wder * (delta + B.lambda[j] * s) + Wmax * s;
+    B.b = std::max(B.b, B.delta_u[j] + B.lambda[j] * B.beta[j]);
+    B.b_grid = std::max(B.b_grid, B.delta_u[j]);
+  }
+  return B;
+}
+
+HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
+                           const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
+                           const HinfPriors& priors, const HinfBoundOptions& o, const Eigen::VectorXd* instrument) {
+  HinfBoundResult r;
+  r.set = uncertainty_set(u, y, basis, order, grid, priors, o.uncertainty, instrument);
+  if (r.set.empty) return r;
+  r.nominal = fit_nominal(r.set, o.nominal);
+  r.delta = additive_error(r.set, r.nominal.model);
+  // Default W1 = 1/delta: minimise the largest relative over-bound |W^-1|^2/delta^2 - 1, so the
+  // bound follows delta at every level rather than only near its peak.
+  WeightOptions wo = o.weight;
+  if (wo.weight.size() == 0) wo.weight = r.delta.cwiseMax(1e-12 * r.delta.maxCoeff()).cwiseInverse();
+  r.weight = fit_weight(grid, r.delta, wo);
+  r.bound = error_bound(r.set, r.nominal.model, r.weight.h);
+  r.unweighted = error_bound(r.set, r.nominal.model, Eigen::VectorXd::Ones(1));
+  return r;
+}
+
+double weighted_error(const std::function<std::complex<double>(double)>& G, const RationalModel& nominal,
+                      const Eigen::VectorXd& h, int dense_points) {
+  double e = 0;
+  for (int i = 0; i < dense_points; ++i) {
+    const double w = pi * i / (dense_points - 1);
+    e = std::max(e, std::abs(G(w) - nominal(w)) / std::abs(poly_at(h, w)));
+  }
+  return e;
+}
+
+}  // namespace sets

@@ -1,0 +1,248 @@
+#include "sets/models/model_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sets/core/error.hpp"
+
+namespace sets {
+
+using ojson = nlohmann::ordered_json;
+
+const ModelParameter* ModelFile::parameter(const std::string& n) const {
+  for (const auto& p : parameters)
+    if (p.name == n) return &p;
+  return nullptr;
+}
+ModelParameter* ModelFile::parameter(const std::string& n) {
+  for (auto& p : parameters)
+    if (p.name == n) return &p;
+  return nullptr;
+}
+const std::string* ModelFile::derivative(const std::string& state) const {
+  for (const auto& d : derivatives)
+    if (d.first == state) return &d.second;
+  return nullptr;
+}
+std::string* ModelFile::derivative(const std::string& state) {
+  for (auto& d : derivatives)
+    if (d.first == state) return &d.second;
+  return nullptr;
+}
+bool ModelFile::has_symbol(const std::string& n) const {
+  if (n == "t" || n == "Ts" || parameter(n)) return true;
+  for (const auto* list : {&inputs, &signals, &sampled})
+    for (const auto& e : *list)
+      if (e.first == n) return true;
+  for (const auto& s : states)
+    if (s.name == n) return true;
+  return false;
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& source, const std::string& what) {
+  throw InputError(source + ": " + what);
+}
+
+NamedTexts read_texts(const ojson& j, const char* key, const std::string& source, bool required) {
+  NamedTexts out;
+  if (!j.contains(key)) {
+    if (required) fail(source, std::string("missing field \"") + key + "\"");
+    return out;
+  }
+  const auto& o = j.at(key);
+  if (!o.is_object()) fail(source, std::string("field \"") + key + "\" must be an object");
+  for (auto it = o.begin(); it != o.end(); ++it) {
+    if (!it.value().is_string())
+      fail(source, std::string("field \"") + key + "." + it.key() + "\" must be a string");
+    out.emplace_back(it.key(), it.value().get<std::string>());
+  }
+  return out;
+}
+
+double number(const ojson& v, const std::string& source, const std::string& field) {
+  if (!v.is_number()) fail(source, "field \"" + field + "\" must be a number");
+  return v.get<double>();
+}
+
+}  // namespace
+
+ModelFile parse_model(const std::string& text, const std::string& source) {
+  ojson j;
+  try {
+    j = ojson::parse(text);
+  } catch (const ojson::parse_error& e) {
+    // nlohmann gives a byte offset; an engineer wants line and column.
+    std::size_t line = 1, column = 1;
+    const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    for (std::size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string msg = e.what();
+    if (auto p = msg.find("parse error"); p != std::string::npos) msg = msg.substr(p);
+    fail(source, "malformed JSON at line " + std::to_string(line) + ", column " +
+                     std::to_string(column) + ": " + msg);
+  }
+  if (!j.is_object()) fail(source, "the model must be a JSON object");
+  ModelFile m;
+  m.source = source;
+  static const char* known[] = {"name",    "time",    "sample_time", "inputs",      "parameters",
+                                "states",  "signals", "sampled",     "derivatives", "outputs",
+                                "format_version"};
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || it.key() == k;
+    if (!ok) fail(source, "unknown field \"" + it.key() + "\"");
+  }
+  if (j.contains("format_version") && number(j["format_version"], source, "format_version") != 1)
+    fail(source, "unsupported format_version (this reader knows version 1)");
+  if (j.contains("name")) {
+    if (!j["name"].is_string()) fail(source, "field \"name\" must be a string");
+    m.name = j["name"].get<std::string>();
+  }
+  if (j.contains("time")) {
+    if (!j["time"].is_string()) fail(source, "field \"time\" must be a column name");
+    m.time_column = j["time"].get<std::string>();
+  }
+  if (j.contains("sample_time")) {
+    m.sample_time = number(j["sample_time"], source, "sample_time");
+    if (!(*m.sample_time > 0)) fail(source, "field \"sample_time\" must be positive");
+  }
+  if (m.time_column.empty() && !m.sample_time)
+    fail(source, "give either \"time\" (a column) or \"sample_time\" (in s)");
+  m.inputs = read_texts(j, "inputs", source, false);
+  if (j.contains("parameters")) {
+    const auto& ps = j["parameters"];
+    if (!ps.is_object()) fail(source, "field \"parameters\" must be an object");
+    for (auto it = ps.begin(); it != ps.end(); ++it) {
+      ModelParameter p;
+      p.name = it.key();
+      const std::string f = "parameters." + p.name;
+      if (it.value().is_number()) {
+        p.value = it.value().get<double>();
+      } else if (it.value().is_object()) {
+        const auto& o = it.value();
+        for (auto k = o.begin(); k != o.end(); ++k)
+          if (k.key() != "value" && k.key() != "fixed" && k.key() != "min" && k.key() != "max")
+            fail(source, "unknown field \"" + f + "." + k.key() + "\"");
+        if (!o.contains("value")) fail(source, "missing field \"" + f + ".value\"");
+        p.value = number(o["value"], source, f + ".value");
+        if (o.contains("fixed")) {
+          if (!o["fixed"].is_boolean()) fail(source, "field \"" + f + ".fixed\" must be true or false");
+          p.fixed = o["fixed"].get<bool>();
+        }
+        if (o.contains("min")) p.min = number(o["min"], source, f + ".min");
+        if (o.contains("max")) p.max = number(o["max"], source, f + ".max");
+        if (p.min > p.max) fail(source, "field \"" + f + "\": min > max");
+      } else {
+        fail(source, "field \"" + f + "\" must be a number or {\"value\": ...}");
+      }
+      m.parameters.push_back(p);
+    }
+  }
+  if (!j.contains("states")) fail(source, "missing field \"states\"");
+  if (!j["states"].is_object()) fail(source, "field \"states\" must be an object");
+  for (auto it = j["states"].begin(); it != j["states"].end(); ++it) {
+    ModelState s;
+    s.name = it.key();
+    if (it.value().is_number())
+      s.initial_value = it.value().get<double>();
+    else if (it.value().is_string())
+      s.initial_column = it.value().get<std::string>();
+    else
+      fail(source, "field \"states." + s.name + "\" must be a number or a column name");
+    m.states.push_back(s);
+  }
+  m.signals = read_texts(j, "signals", source, false);
+  m.sampled = read_texts(j, "sampled", source, false);
+  m.derivatives = read_texts(j, "derivatives", source, true);
+  m.outputs = read_texts(j, "outputs", source, true);
+  if (m.outputs.empty()) fail(source, "field \"outputs\" is empty");
+  for (const auto& s : m.states)
+    if (!m.derivative(s.name)) fail(source, "state \"" + s.name + "\" has no entry in \"derivatives\"");
+  for (const auto& d : m.derivatives) {
+    bool found = false;
+    for (const auto& s : m.states) found = found || s.name == d.first;
+    if (!found) fail(source, "\"derivatives." + d.first + "\" is not a state");
+  }
+  // One name, one meaning.
+  std::vector<std::string> names = {"t", "Ts"};
+  auto add = [&](const std::string& n, const char* where) {
+    for (const auto& x : names)
+      if (x == n) fail(source, "symbol \"" + n + "\" in \"" + where + "\" is defined twice");
+    names.push_back(n);
+  };
+  for (const auto& e : m.inputs) add(e.first, "inputs");
+  for (const auto& p : m.parameters) add(p.name, "parameters");
+  for (const auto& s : m.states) add(s.name, "states");
+  for (const auto& e : m.signals) add(e.first, "signals");
+  for (const auto& e : m.sampled) add(e.first, "sampled");
+  for (const auto& o : m.outputs)
+    if (!m.has_symbol(o.first)) fail(source, "unknown symbol \"" + o.first + "\" in \"outputs\"");
+  return m;
+}
+
+ModelFile load_model_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the model file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_model(ss.str(), path);
+}
+
+std::string to_json_text(const ModelFile& m) {
+  ojson j;
+  j["name"] = m.name;
+  if (!m.time_column.empty()) j["time"] = m.time_column;
+  if (m.sample_time) j["sample_time"] = *m.sample_time;
+  auto texts = [](const NamedTexts& t) {
+    ojson o = ojson::object();
+    for (const auto& [k, v] : t) o[k] = v;
+    return o;
+  };
+  if (!m.inputs.empty()) j["inputs"] = texts(m.inputs);
+  ojson ps = ojson::object();
+  for (const auto& p : m.parameters) {
+    if (!p.fixed && p.min <= -1e300 && p.max >= 1e300) {
+      ps[p.name] = p.value;
+      continue;
+    }
+    ojson o;
+    o["value"] = p.value;
+    if (p.fixed) o["fixed"] = true;
+    if (p.min > -1e300) o["min"] = p.min;
+    if (p.max < 1e300) o["max"] = p.max;
+    ps[p.name] = o;
+  }
+  j["parameters"] = ps;
+  ojson st = ojson::object();
+  for (const auto& s : m.states) {
+    if (s.initial_value)
+      st[s.name] = *s.initial_value;
+    else
+      st[s.name] = s.initial_column;
+  }
+  j["states"] = st;
+  if (!m.signals.empty()) j["signals"] = texts(m.signals);
+  if (!m.sampled.empty()) j["sampled"] = texts(m.sampled);
+  j["derivatives"] = texts(m.derivatives);
+  j["outputs"] = texts(m.outputs);
+  return j.dump(2) + "\n";
+}
+
+
+void save_model_file(const ModelFile& model, const std::string& path) {
+  write_file_atomically(path, to_json_text(model));
+}
+
+}  // namespace sets

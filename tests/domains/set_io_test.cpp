@@ -1,0 +1,157 @@
+// JSON save/load of every set type (exact round trip, clear errors) and 2-D projection polygons.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <unistd.h>
+
+#include <algorithm>
+#include <limits>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "sets/core/error.hpp"
+#include "sets/domains/set_io.hpp"
+
+namespace {
+
+std::mt19937_64 rng(42);
+double u() { return std::uniform_real_distribution<double>(-1, 1)(rng); }
+Eigen::MatrixXd mat(int r, int c) { return Eigen::MatrixXd::NullaryExpr(r, c, [] { return u(); }); }
+
+// Point-in-convex-polygon (counter-clockwise vertices), with a small tolerance for rounding.
+bool in_polygon(const Eigen::MatrixXd& V, const Eigen::Vector2d& x) {
+  for (int k = 0; k < V.cols(); ++k) {
+    const Eigen::Vector2d a = V.col(k), b = V.col((k + 1) % V.cols());
+    if ((b - a).x() * (x - a).y() - (b - a).y() * (x - a).x() < -1e-12) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(SetIo, JsonRoundTripIsExact) {
+  const Eigen::MatrixXd L = mat(3, 3);
+  const std::vector<sets::AnySet> all = {
+      sets::make_box(Eigen::Vector2d(-0.1, 1.0 / 3), Eigen::Vector2d(0.7, 2.0)),
+      sets::Ellipsoid(Eigen::Vector3d(u(), u(), u()), L * L.transpose()),
+      sets::Zonotope(Eigen::Vector3d(u(), u(), u()), mat(3, 5)),
+      sets::HPolytope(mat(4, 3), Eigen::Vector4d(1, 2, std::numeric_limits<double>::infinity(), 0.1)),
+      sets::VPolytope(mat(3, 6))};
+  const auto dir = std::filesystem::temp_directory_path() / ("sets_io_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const auto& s : all) {
+    const std::string path = (dir / "set.json").string();
+    sets::save_json(path, s);
+    const sets::AnySet back = sets::load_json(path);
+    ASSERT_EQ(back.index(), s.index());
+    EXPECT_EQ(sets::to_json(back), sets::to_json(s));  // exact: doubles survive the text form
+    EXPECT_FALSE(sets::to_string(back).empty());
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SetIo, BadJsonNamesTheField) {
+  using nlohmann::json;
+  auto message = [](const json& j) {
+    try {
+      sets::from_json(j, "input.json");
+    } catch (const sets::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({{"type", "ellipsoid"}, {"center", {0, 0}}}).find("'shape': missing"), std::string::npos);
+  EXPECT_NE(message({{"type", "zonotope"}, {"center", {0, 0}}, {"generators", {{1, "x"}}}}).find("generators[0][1]"),
+            std::string::npos);
+  EXPECT_NE(message({{"type", "ellipsoid"}, {"center", {0, 0}}, {"shape", {{1, 0}, {0, -1}}}}).find("input.json"),
+            std::string::npos);
+  EXPECT_NE(message({{"type", "circle"}}).find("unknown set type"), std::string::npos);
+  const auto path = std::filesystem::temp_directory_path() / "sets_io_bad.json";
+  std::ofstream(path) << "{\"type\": \"box\", \"lower\": [0,";
+  EXPECT_THROW(sets::load_json(path.string()), sets::InputError);
+  std::filesystem::remove(path);
+}
+
+TEST(SetIo, TextRoundTripIsExact) {
+  const Eigen::MatrixXd L = mat(3, 3);
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<sets::AnySet> all = {
+      sets::make_box(Eigen::Vector2d(-inf, 1.0 / 3), Eigen::Vector2d(0.7, inf)),
+      sets::Ellipsoid(Eigen::Vector3d(u(), u(), u()), L * L.transpose()),
+      sets::Zonotope(Eigen::Vector3d(u(), u(), u()), mat(3, 5)),
+      sets::Zonotope(Eigen::Vector2d(u(), u()), Eigen::MatrixXd(2, 0)),  // a point
+      sets::HPolytope(mat(4, 3), Eigen::Vector4d(1, 2, inf, 0.1)),
+      sets::HPolytope(Eigen::MatrixXd(0, 2), Eigen::VectorXd(0)),  // the whole plane
+      sets::VPolytope(mat(3, 6))};
+  const auto path = std::filesystem::temp_directory_path() / ("sets_io_" + std::to_string(::getpid()) + ".txt");
+  for (const auto& s : all) {
+    const sets::AnySet back = sets::from_string(sets::to_string(s));
+    ASSERT_EQ(back.index(), s.index()) << sets::to_string(s);
+    EXPECT_EQ(sets::to_json(back), sets::to_json(s)) << sets::to_string(s);  // bit for bit
+    sets::save_text(path.string(), s);
+    EXPECT_EQ(sets::to_json(sets::load_text(path.string())), sets::to_json(s));
+  }
+  std::filesystem::remove(path);
+  // Hand-written text with line breaks and spacing reads the same.
+  const auto hp = sets::from_string("HPolytope(dim=2,\n  rows=[[1, 0 | 1],\n        [0, 1|2e0]])");
+  EXPECT_EQ(std::get<sets::HPolytope>(hp).b()[1], 2.0);
+}
+
+TEST(SetIo, BadTextNamesLineColumnOrField) {
+  auto message = [](const std::string& text) {
+    try {
+      sets::from_string(text, "set.txt");
+    } catch (const sets::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto has = [](const std::string& m, const char* part) { return m.find(part) != std::string::npos; };
+  std::string m = message("Zonotope(dim=2, center=[0, 0],\n generators=[[1, x]])");
+  EXPECT_TRUE(has(m, "set.txt: line 2, column 18: expected a number")) << m;
+  m = message("Circle(dim=2, center=[0, 0])");
+  EXPECT_TRUE(has(m, "line 1, column 1: unknown set type 'Circle'")) << m;
+  m = message("Ellipsoid(dim=2, center=[0, 0])");
+  EXPECT_TRUE(has(m, "field 'shape' is missing")) << m;
+  m = message("Ellipsoid(dim=2, center=[0, 0], shape=[[1, 0], [0, -1]])");  // not positive definite
+  EXPECT_TRUE(has(m, "set.txt (Ellipsoid at line 1, column 1)")) << m;
+  m = message("VPolytope(dim=3, points=[[0, 0], [1, 0]])");
+  EXPECT_TRUE(has(m, "field 'dim': says 3 but the data have dimension 2")) << m;
+  m = message("HPolytope(dim=2, rows=[[1, 0 | 1 | 2]])");
+  EXPECT_TRUE(has(m, "column 34: expected ']' after the value following '|'")) << m;
+  m = message("Box(dim=1, [[0, nan]])");
+  EXPECT_TRUE(has(m, "NaN")) << m;
+  m = message("Box(dim=1, [[0, 1]]) trailing");
+  EXPECT_TRUE(has(m, "unexpected text after the set")) << m;
+  EXPECT_THROW(sets::load_text("/nonexistent/set.txt"), sets::InputError);
+}
+
+TEST(SetIo, ProjectionPolygonsContainTheProjectedSets) {
+  const sets::Zonotope Z(Eigen::Vector3d(0, 1, 2), mat(3, 6));
+  const Eigen::MatrixXd L = mat(3, 3);
+  const sets::Ellipsoid E(Eigen::Vector3d(0, 1, 2), L * L.transpose() + 0.1 * Eigen::Matrix3d::Identity());
+  const sets::HPolytope H = sets::to_hpolytope(Z);
+  const Eigen::MatrixXd PZ = sets::projection_polygon(Z, 0, 2);
+  const Eigen::MatrixXd PE = sets::projection_polygon(E, 0, 2);
+  const Eigen::MatrixXd PH = sets::projection_polygon(H, 0, 2);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(E.shape());
+  const Eigen::MatrixXd S = es.eigenvectors() * es.eigenvalues().cwiseSqrt().asDiagonal();
+  for (int k = 0; k < 300; ++k) {
+    Eigen::VectorXd xi = Eigen::VectorXd::NullaryExpr(6, [] { return u() > 0 ? 1.0 : -1.0; });
+    const Eigen::VectorXd z = Z.center() + Z.generators() * xi;
+    EXPECT_TRUE(in_polygon(PZ, Eigen::Vector2d(z[0], z[2])));
+    EXPECT_TRUE(in_polygon(PH, Eigen::Vector2d(z[0], z[2])));
+    Eigen::Vector3d w(u(), u(), u());
+    const Eigen::VectorXd e = E.center() + S * w.normalized();
+    EXPECT_TRUE(in_polygon(PE, Eigen::Vector2d(e[0], e[2])));
+  }
+  std::ostringstream os;
+  sets::write_polygon(os, PZ);
+  const std::string text = os.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), PZ.cols() + 2);  // closed + blank line
+  EXPECT_THROW(sets::projection_polygon(Z, 0, 0), sets::InputError);
+}

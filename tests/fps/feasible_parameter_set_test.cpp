@@ -1,0 +1,364 @@
+// Feasible parameter sets and PUIs: soundness, tightness, exact 2-D comparison, falsification,
+// bad input, and PUIs on several threads at once.
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <CGAL/Gmpq.h>
+
+#include <random>
+#include <thread>
+
+#include "sets/core/error.hpp"
+#include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/numeric/linear_program.hpp"
+
+namespace {
+
+using sets::FeasibleParameterSet;
+using sets::IntervalMatrix;
+using sets::IntervalVector;
+
+struct Data {
+  Eigen::MatrixXd Phi;
+  Eigen::VectorXd y, delta, theta;
+};
+
+Data make_data(int p, int N, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Data d;
+  d.theta = Eigen::VectorXd::NullaryExpr(p, [&] { return 2 * U(rng); });
+  d.Phi = Eigen::MatrixXd::NullaryExpr(N, p, [&] { return U(rng); });
+  d.delta = Eigen::VectorXd::NullaryExpr(N, [&] { return 0.05 + 0.1 * std::abs(U(rng)); });
+  d.y = d.Phi * d.theta;
+  for (int t = 0; t < N; ++t) d.y[t] += d.delta[t] * U(rng);
+  return d;
+}
+
+}  // namespace
+
+RC_GTEST_PROP(Pui, TrueParameterIsAlwaysInsideExactRegressors, ()) {
+  const int p = *rc::gen::inRange(1, 6);
+  const int N = *rc::gen::inRange(p + 1, 60);
+  const Data d = make_data(p, N, *rc::gen::arbitrary<std::uint64_t>());
+  const auto r = sets::pui(FeasibleParameterSet::from_data(d.Phi, d.y, d.delta));
+  RC_ASSERT(!r.empty);
+  RC_ASSERT(r.guaranteed);
+  RC_ASSERT(sets::contains(r.box, d.theta));
+}
+
+RC_GTEST_PROP(Pui, TrueParameterIsAlwaysInsideIntervalRegressors, ()) {
+  // Errors in variables: each regressor entry is known only to an interval around the truth.
+  const int p = *rc::gen::inRange(1, 5);
+  const int N = *rc::gen::inRange(p + 2, 40);
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  Data d = make_data(p, N, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_real_distribution<double> U(0, 1);
+  IntervalMatrix Phi(N, p);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    for (int j = 0; j < p; ++j) {
+      const double r = 0.02 * U(rng), off = r * (2 * U(rng) - 1);
+      Phi(t, j) = sets::interval_around(d.Phi(t, j) + off, r);
+    }
+    Y[t] = sets::interval_around(d.y[t], d.delta[t]);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  RC_ASSERT(fps.contains(d.theta) != sets::BoolInterval::no);
+  const auto all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
+  RC_ASSERT(!all.empty);
+  RC_ASSERT(all.guaranteed);
+  RC_ASSERT(sets::contains(all.box, d.theta));
+}
+
+RC_GTEST_PROP(Pui, EndsAreAttainedAndSampledPointsInside, ()) {
+  const int p = *rc::gen::inRange(1, 5);
+  const int N = *rc::gen::inRange(p + 1, 40);
+  const Data d = make_data(p, N, *rc::gen::arbitrary<std::uint64_t>());
+  const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  const auto r = sets::pui(fps);
+  RC_ASSERT(!r.empty);
+  const double tol = 1e-7;
+  for (int l = 0; l < p; ++l) {
+    for (const Eigen::VectorXd& x : {Eigen::VectorXd(r.lower_points.col(l)), Eigen::VectorXd(r.upper_points.col(l))}) {
+      // feasible to LP tolerance
+      const Eigen::VectorXd res = (d.y - d.Phi * x).cwiseAbs() - d.delta;
+      RC_ASSERT(res.maxCoeff() <= tol);
+    }
+    RC_ASSERT(std::abs(r.lower_points(l, l) - r.box[l].lower()) <= tol * (1 + std::abs(r.box[l].lower())));
+    RC_ASSERT(std::abs(r.upper_points(l, l) - r.box[l].upper()) <= tol * (1 + std::abs(r.box[l].upper())));
+  }
+  // Sample the box and keep the points the set certainly contains: all must be in the PUIs
+  // (trivially) and, more to the point, convex combinations of attaining points stay feasible.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (int k = 0; k < 200; ++k) {
+    Eigen::VectorXd x(p);
+    for (int j = 0; j < p; ++j) x[j] = r.box[j].lower() + U(rng) * (r.box[j].upper() - r.box[j].lower());
+    if (fps.contains(x) == sets::BoolInterval::yes) RC_ASSERT(sets::contains(r.box, x));
+  }
+}
+
+// 2-D: the exact feasible polygon's vertices from all pairs of boundary lines in rational
+// arithmetic; its bounding box must equal the PUI box to LP tolerance, and contain... inside it.
+TEST(Pui, TwoDimensionalBoxEqualsExactPolygonBoundingBox) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Data d = make_data(2, 12, seed);
+    const auto r = sets::pui(FeasibleParameterSet::from_data(d.Phi, d.y, d.delta));
+    ASSERT_FALSE(r.empty);
+    // half-planes a^T x <= b with exact data (y +- delta rounded outward as the FPS stores it)
+    const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+    std::vector<std::array<CGAL::Gmpq, 3>> hp;  // a0, a1, b
+    for (int t = 0; t < 12; ++t) {
+      hp.push_back({d.Phi(t, 0), d.Phi(t, 1), fps.outputs()[t].upper()});
+      hp.push_back({-d.Phi(t, 0), -d.Phi(t, 1), -fps.outputs()[t].lower()});
+    }
+    bool first = true;
+    CGAL::Gmpq xmin, xmax, ymin, ymax;
+    for (std::size_t i = 0; i < hp.size(); ++i)
+      for (std::size_t j = i + 1; j < hp.size(); ++j) {
+        const CGAL::Gmpq det = hp[i][0] * hp[j][1] - hp[i][1] * hp[j][0];
+        if (det == 0) continue;
+        const CGAL::Gmpq x = (hp[i][2] * hp[j][1] - hp[i][1] * hp[j][2]) / det;
+        const CGAL::Gmpq y = (hp[i][0] * hp[j][2] - hp[i][2] * hp[j][0]) / det;
+        bool ok = true;
+        for (const auto& h : hp)
+          if (h[0] * x + h[1] * y > h[2]) { ok = false; break; }
+        if (!ok) continue;
+        if (first || x < xmin) xmin = x;
+        if (first || x > xmax) xmax = x;
+        if (first || y < ymin) ymin = y;
+        if (first || y > ymax) ymax = y;
+        first = false;
+      }
+    ASSERT_FALSE(first) << "exact polygon empty for seed " << seed;
+    // Guaranteed: the PUI box contains the exact bounding box ...
+    EXPECT_LE(CGAL::Gmpq(r.box[0].lower()), xmin);
+    EXPECT_GE(CGAL::Gmpq(r.box[0].upper()), xmax);
+    EXPECT_LE(CGAL::Gmpq(r.box[1].lower()), ymin);
+    EXPECT_GE(CGAL::Gmpq(r.box[1].upper()), ymax);
+    // ... and is tight to LP tolerance.
+    EXPECT_NEAR(r.box[0].lower(), xmin.to_double(), 1e-9);
+    EXPECT_NEAR(r.box[0].upper(), xmax.to_double(), 1e-9);
+    EXPECT_NEAR(r.box[1].lower(), ymin.to_double(), 1e-9);
+    EXPECT_NEAR(r.box[1].upper(), ymax.to_double(), 1e-9);
+  }
+}
+
+TEST(Pui, ConflictingDataAreReportedAsFalsification) {
+  Data d = make_data(2, 30, 3);
+  d.y[17] += 5;  // an outlier no parameter can explain within the bounds
+  const auto r = sets::pui(FeasibleParameterSet::from_data(d.Phi, d.y, d.delta));
+  ASSERT_TRUE(r.empty);
+  ASSERT_FALSE(r.falsification.samples.empty());
+  EXPECT_NE(std::find(r.falsification.samples.begin(), r.falsification.samples.end(), 17),
+            r.falsification.samples.end());
+  EXPECT_NE(r.falsification.message().find("falsify"), std::string::npos);
+}
+
+TEST(Pui, BadInputNamesSampleAndField) {
+  Data d = make_data(2, 10, 4);
+  Eigen::VectorXd y = d.y;
+  y[4] = NAN;
+  try {
+    FeasibleParameterSet::from_data(d.Phi, y, d.delta);
+    FAIL();
+  } catch (const sets::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sample 4"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("output"), std::string::npos);
+  }
+  Eigen::VectorXd delta = d.delta;
+  delta[2] = -1;
+  EXPECT_THROW(FeasibleParameterSet::from_data(d.Phi, d.y, delta), sets::InputError);
+  EXPECT_THROW(FeasibleParameterSet::from_data(d.Phi.topRows(1), d.y.head(1), d.delta.head(1)),
+               sets::InputError);
+  EXPECT_THROW(FeasibleParameterSet::from_data(d.Phi, d.y.head(5), d.delta), sets::InputError);
+}
+
+TEST(Pui, RemarkTwoExtendsAcrossZeroBounds) {
+  // theta_2 = 0 exactly: the set straddles the face theta_2 = 0 and Remark 2 must visit both sides.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int N = 50;
+  IntervalMatrix Phi(N, 2);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    const double a = U(rng), b = U(rng);
+    Phi(t, 0) = sets::interval_around(a, 0.01);
+    Phi(t, 1) = sets::interval_around(b, 0.01);
+    Y[t] = sets::interval_around(0.7 * a + 0.0 * b, 0.05);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  const auto r2 = sets::pui(fps);
+  const auto all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
+  EXPECT_GE(r2.orthants.size(), 2u);
+  EXPECT_LT(r2.box[1].lower(), 0.0);
+  EXPECT_GT(r2.box[1].upper(), 0.0);
+  EXPECT_NEAR(r2.box[1].lower(), all.box[1].lower(), 1e-9);
+  EXPECT_NEAR(r2.box[1].upper(), all.box[1].upper(), 1e-9);
+}
+
+TEST(Pui, SeveralThreadsAtOnceGiveTheSameAnswers) {
+  // GLPK is not reentrant across problem objects shared between threads; each PUI call builds
+  // its own problems on its own thread, which must be safe.
+  std::vector<Data> data;
+  std::vector<sets::PuiResult> serial;
+  for (int k = 0; k < 8; ++k) {
+    data.push_back(make_data(4, 300, 100 + k));
+    serial.push_back(sets::pui(FeasibleParameterSet::from_data(data[k].Phi, data[k].y, data[k].delta)));
+  }
+  std::vector<sets::PuiResult> parallel(8);
+  std::vector<std::thread> threads;
+  for (int k = 0; k < 8; ++k)
+    threads.emplace_back([&, k] {
+      for (int rep = 0; rep < 3; ++rep)
+        parallel[k] = sets::pui(FeasibleParameterSet::from_data(data[k].Phi, data[k].y, data[k].delta));
+    });
+  for (auto& t : threads) t.join();
+  for (int k = 0; k < 8; ++k)
+    for (int l = 0; l < 4; ++l) {
+      EXPECT_EQ(parallel[k].box[l].lower(), serial[k].box[l].lower());
+      EXPECT_EQ(parallel[k].box[l].upper(), serial[k].box[l].upper());
+    }
+}
+
+// ---------------------------------------------------------------- support in any direction
+
+namespace {
+
+// Rejection samples of the set (points that `contains` certifies), drawn in the PUI box.
+std::vector<Eigen::VectorXd> sample_set(const FeasibleParameterSet& fps, const IntervalVector& box, int tries,
+                                        std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<Eigen::VectorXd> out;
+  for (int k = 0; k < tries; ++k) {
+    Eigen::VectorXd x(fps.dimension());
+    for (int j = 0; j < x.size(); ++j) x[j] = box[j].lower() + U(rng) * (box[j].upper() - box[j].lower());
+    if (fps.contains(x) == sets::BoolInterval::yes) out.push_back(x);
+  }
+  return out;
+}
+
+// Certified lower end of d^T x (x exact doubles): the check must not be fooled by rounding.
+double dot_lower(const Eigen::VectorXd& d, const Eigen::VectorXd& x) {
+  sets::Interval s(0.0);
+  for (Eigen::Index j = 0; j < d.size(); ++j) s += sets::Interval(d[j]) * sets::Interval(x[j]);
+  return s.lower();
+}
+
+std::vector<Eigen::VectorXd> random_directions(int p, int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> G(0, 1);
+  std::vector<Eigen::VectorXd> dirs;
+  for (int k = 0; k < count; ++k) dirs.push_back(Eigen::VectorXd::NullaryExpr(p, [&] { return G(rng); }));
+  return dirs;
+}
+
+}  // namespace
+
+// Every point of the set (the true parameter and certified samples) lies below the support in
+// every direction, and the support is tight: the H-polytope of the same strips (certified the
+// same way, but with every row in one LP) gives the same values to LP tolerance.
+RC_GTEST_PROP(FpsSupport, BoundsEverySampledPointAndMatchesThePolytope, ()) {
+  const int p = *rc::gen::inRange(1, 5);
+  const int N = *rc::gen::inRange(p + 1, 300);
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  const Data d = make_data(p, N, seed);
+  const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  const auto dirs = random_directions(p, 12, seed + 2);
+  sets::PuiOptions opt;
+  opt.working_set = *rc::gen::arbitrary<bool>();
+  const sets::FpsSupport s = sets::support(fps, dirs, opt);
+  RC_ASSERT(!s.empty);
+  RC_ASSERT(s.guaranteed);
+  RC_ASSERT(s.maxima.size() == dirs.size());
+  std::vector<Eigen::VectorXd> points = sample_set(fps, s.box, 300, seed + 3);
+  points.push_back(d.theta);
+  RC_TAG(points.size() > 1 ? "sampled points" : "only the true parameter");
+  const std::vector<double> poly = sets::support(fps.orthant_polytope({}), dirs);
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    RC_ASSERT(std::isfinite(s.maxima[k]));
+    for (const auto& x : points) RC_ASSERT(dot_lower(dirs[k], x) <= s.maxima[k]);
+    RC_ASSERT(std::abs(s.maxima[k] - poly[k]) <= 1e-6 * (1 + std::abs(poly[k])));
+  }
+}
+
+// Interval regressors, every orthant: each orthant piece is an exact polyhedron, so the support
+// is the largest of the pieces' supports.
+RC_GTEST_PROP(FpsSupport, IntervalRegressorsTakeTheLargestOrthantPiece, ()) {
+  const int p = *rc::gen::inRange(1, 4);
+  const int N = *rc::gen::inRange(p + 2, 40);
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  const Data d = make_data(p, N, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_real_distribution<double> U(0, 1);
+  IntervalMatrix Phi(N, p);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    for (int j = 0; j < p; ++j) Phi(t, j) = sets::interval_around(d.Phi(t, j), 0.02 * U(rng));
+    Y[t] = sets::interval_around(d.y[t], d.delta[t]);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  const auto dirs = random_directions(p, 6, seed + 2);
+  const sets::FpsSupport s = sets::support(fps, dirs, {.orthants = sets::OrthantSelection::all});
+  RC_ASSERT(!s.empty);
+  RC_ASSERT(s.guaranteed);
+  std::vector<double> best(dirs.size(), -sets::inf);
+  for (const auto& o : sets::all_orthants(p)) {
+    const auto P = fps.orthant_polytope(o);
+    if (sets::is_empty(P) == sets::BoolInterval::yes) continue;
+    const auto v = sets::support(P, dirs);
+    for (std::size_t k = 0; k < dirs.size(); ++k) best[k] = std::max(best[k], v[k]);
+  }
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    RC_ASSERT(dot_lower(dirs[k], d.theta) <= s.maxima[k]);
+    RC_ASSERT(std::abs(s.maxima[k] - best[k]) <= 1e-6 * (1 + std::abs(best[k])));
+  }
+}
+
+TEST(FpsSupport, EmptySetAndBadDirections) {
+  Eigen::MatrixXd Phi(3, 1);
+  Phi << 1, 1, 1;
+  const auto fps = FeasibleParameterSet::from_data(Phi, Eigen::Vector3d(0, 1, 0), Eigen::Vector3d::Constant(0.1));
+  const auto s = sets::support(fps, {Eigen::VectorXd::Ones(1)});
+  EXPECT_TRUE(s.empty);
+  EXPECT_FALSE(s.falsification.samples.empty());
+  EXPECT_EQ(s.maxima[0], -sets::inf);
+  EXPECT_THROW(sets::support(fps, {Eigen::VectorXd::Ones(2)}), sets::InputError);
+}
+
+// An unbounded set: bounded directions keep a finite value only if certifiable; unbounded ones
+// are +inf, never a finite number.
+TEST(FpsSupport, UnboundedDirectionIsInfinite) {
+  Eigen::MatrixXd Phi(4, 2);
+  Phi << 1, 0, 1, 0, 2, 0, 1, 0;  // theta_2 is not constrained at all
+  const auto fps = FeasibleParameterSet::from_data(Phi, Eigen::Vector4d(1, 1, 2, 1), Eigen::Vector4d::Constant(0.1));
+  const auto s = sets::support(fps, {Eigen::Vector2d(0, 1), Eigen::Vector2d(1, 1)});
+  ASSERT_FALSE(s.empty);
+  EXPECT_EQ(s.maxima[0], sets::inf);
+  EXPECT_EQ(s.maxima[1], sets::inf);
+}
+
+// add_strip grows its storage geometrically; the set it builds is the same as from_data's.
+TEST(FeasibleParameterSet, AddStripBuildsTheSameSetAsFromData) {
+  const Data d = make_data(3, 5000, 11);
+  const auto bulk = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  FeasibleParameterSet grown(3);
+  for (int t = 0; t < 5000; ++t) grown.add_strip(d.Phi.row(t).transpose(), d.y[t], d.delta[t]);
+  ASSERT_EQ(grown.size(), bulk.size());
+  ASSERT_EQ(grown.regressors().rows(), 5000);
+  for (int t = 0; t < 5000; ++t) {
+    for (int j = 0; j < 3; ++j) ASSERT_EQ(grown.regressors()(t, j).lower(), bulk.regressors()(t, j).lower());
+    ASSERT_EQ(grown.outputs()[t].lower(), bulk.outputs()[t].lower());
+    ASSERT_EQ(grown.outputs()[t].upper(), bulk.outputs()[t].upper());
+  }
+  const auto a = sets::pui(grown), b = sets::pui(bulk);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_EQ(a.box[j].lower(), b.box[j].lower());
+    EXPECT_EQ(a.box[j].upper(), b.box[j].upper());
+  }
+  EXPECT_EQ(grown.contains(d.theta), bulk.contains(d.theta));
+}
