@@ -199,6 +199,15 @@ int main(int argc, char** argv) {
   app.add_option("--formulation", formulation, "MILP binaries: single (one per jump) or paper (two, eq. 12)")
       ->check(CLI::IsMember({"single", "paper"}));
   app.add_flag("!--no-warm-start", warm, "do not start the MILP from the l-inf solution");
+  std::string solver = "jump";
+  app.add_option("--solver", solver,
+                 "how (14) is solved: jump (branch and bound over jump patterns with certified bounds, the "
+                 "default) or glpk (the big-M MILP in GLPK, for comparison; --formulation applies)")
+      ->check(CLI::IsMember({"jump", "glpk"}));
+  int grid = 1;
+  app.add_option("--grid", grid,
+                 "quantized approximation: jumps only every GRID samples (1 = every sample, (14) as written)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--case", only, "run only this case of the selected table(s) (0-based)")->check(CLI::NonNegativeNumber);
   app.add_option("--scale", scale,
                  "multiply every perturbation amplitude and noise level by this (1 = the paper's; smaller "
@@ -239,6 +248,7 @@ int main(int argc, char** argv) {
     nlohmann::json out;
     out["settings"] = {{"N", N}, {"h", kStep}, {"seed", seed}, {"time_limit_s", time_limit}, {"node_limit", node_limit}, {"mu_rel", mu_rel},
                        {"box_rel", box_rel}, {"gap", gap}, {"formulation", formulation}, {"warm_start", warm},
+                       {"solver", solver}, {"grid", grid},
                        {"scale", scale}, {"milp_eps", milp_eps},
                        {"plant", plant}, {"relinearise", relinearise}};
     nlohmann::json input_settings = {{"kind", input_kind}, {"amplitude_bound", 1.0}};
@@ -368,6 +378,8 @@ int main(int argc, char** argv) {
         so.formulation =
             formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
         so.milp = {time_limit, gap, verbose, node_limit};
+        so.solver = solver == "glpk" ? sets::SparseSolver::glpk_big_m : sets::SparseSolver::jump_search;
+        so.grid = grid;
         if (warm) so.start = linf.pi;
         const auto m = sets::sparse_bound(data, so);
         const Eigen::VectorXd rms = sets::rms_tracking_error(m.pi, pi);
