@@ -32,6 +32,7 @@
 
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 
