@@ -20,6 +20,7 @@
 #include "sets/domains/zonotope.hpp"
 
 #include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/fps/outer_zonotope.hpp"
 
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
