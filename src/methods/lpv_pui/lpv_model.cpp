@@ -286,14 +286,6 @@ void LpvModelStructure::validate() const {
   check(b, "b", 0);
 }
 
-LpvModelStructure LpvModelStructure::cerone_regruto_example() {
-  LpvModelStructure m;
-  m.alpha = 1;
-  m.a = {{BasisFunction::power(0, 1)}, {BasisFunction(), BasisFunction::power(0, 2)}};
-  m.b = {{}, {BasisFunction()}, {BasisFunction::power(0, 1), BasisFunction::power(0, 2)}};
-  return m;
-}
-
 LpvModelStructure parse_lpv_structure_json(const std::string& text, const std::string& source) {
   nlohmann::json j;
   try {
