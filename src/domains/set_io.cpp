@@ -139,7 +139,7 @@ AnySet from_json(const json& j, const std::string& where) {
     if (msg.rfind(where, 0) == 0) throw;
     throw InputError(where + ": " + msg);
   }
-  bad(where, "type", "unknown set type '" + type + "' (box, ellipsoid, zonotope, hpolytope, vpolytope)");
+  bad(where, "type", "unknown set type '" + printable(type, 40) + "' (box, ellipsoid, zonotope, hpolytope, vpolytope)");
 }
 
 void save_json(const std::string& path, const AnySet& set) {

@@ -4,7 +4,9 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <numbers>
 
 #include "sets/core/error.hpp"
 #include "sets/core/printable.hpp"
@@ -116,7 +118,8 @@ class Checker {
     next();
     if (is_op("(")) fail(t.at, "\"" + t.text + "\" is not a function");
     if (is_constant(t.text)) {
-      emit(t.text);
+      // As numbers: muparser 2.3.3's _pi is 3.141592653589, wrong in the 13th digit.
+      emit(shortest(t.text == "_pi" ? std::numbers::pi : std::numbers::e));
       return;
     }
     if (!is_symbol_(t.text)) fail(t.at, "unknown symbol \"" + t.text + "\"");
@@ -232,15 +235,17 @@ class Checker {
       fail(b, "malformed number \"" + printable(s_.substr(b, pos_ - b + 1), 40) + "\"");
     double v = 0;
     const auto r = std::from_chars(tok_.written.data(), tok_.written.data() + tok_.written.size(), v);
-    if (r.ec == std::errc::result_out_of_range && !(std::abs(v) > 0)) {
-      v = 0;  // underflow: 1e-400 is zero to double precision
-    } else if (r.ec != std::errc() || !std::isfinite(v)) {
+    if (r.ec == std::errc::result_out_of_range) v = std::strtod(tok_.written.c_str(), nullptr);  // 0 or +-inf
+    if ((r.ec != std::errc() && r.ec != std::errc::result_out_of_range) || !std::isfinite(v))
       fail(b, "the number " + printable(tok_.written, 40) + " is outside the range of double precision");
-    }
-    // Canonical text: the shortest form that reads back as the same double.
+    tok_.text = shortest(v);  // canonical: 1e-400 is 0, 1.50 is 1.5
+  }
+
+  // The shortest text that reads back as the same double.
+  static std::string shortest(double v) {
     char buf[32];
     const auto w = std::to_chars(buf, buf + sizeof buf, v);
-    tok_.text.assign(buf, w.ptr);
+    return std::string(buf, w.ptr);
   }
 
   // ---- helpers

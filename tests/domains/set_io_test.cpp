@@ -173,6 +173,9 @@ TEST(SetIo, HostileJsonAndTextAreInputErrorsWithTheirPlace) {
   EXPECT_TRUE(contains(m, "field 'lower[0]': expected a number (or \"inf\", \"-inf\"), got object")) << m;
   m = input_error_of([] { sets::parse_set_json("{\"type\": \"box\", \"lower\": [\"\x1b[2J\"], \"upper\": [1]}", "s.json"); });
   EXPECT_FALSE(sets::test::has_raw_control_bytes(m)) << m;
+  // Found by fuzz_set_json: the type was echoed raw.
+  m = input_error_of([] { sets::parse_set_json("{\"type\": \"hp\x7flytope\"}", "s.json"); });
+  EXPECT_TRUE(contains(m, "unknown set type 'hp\\x7flytope'")) << m;
   // dim = 1e300 was cast to long: undefined behaviour.
   m = input_error_of([] { sets::from_string("Box(dim=1e300, [[0, 1]])", "s.txt"); });
   EXPECT_TRUE(contains(m, "s.txt: line 1, column 9: 'dim' must be a whole number from 0 to 100000")) << m;
