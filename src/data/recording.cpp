@@ -44,10 +44,70 @@ void Recording::add(const std::string& name, std::vector<double> values) {
   columns.push_back(std::move(values));
 }
 
+std::size_t Recording::column_index(const std::string& name_or_number, const std::string& what) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name_or_number) return i;
+  if (!name_or_number.empty() && name_or_number.find_first_not_of("0123456789") == std::string::npos &&
+      name_or_number.size() < 10) {
+    const std::size_t k = std::stoul(name_or_number);
+    if (k >= 1 && k <= names.size()) return k - 1;
+  }
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + printable(n, 60);
+  throw InputError(source + ": no column \"" + printable(name_or_number, 100) + "\"" +
+                   (what.empty() ? "" : " (given by " + what + ")") + "; the file has: " + printable(list, 400) +
+                   " (or give a column number from 1 to " + std::to_string(names.size()) + ")");
+}
+
+Eigen::MatrixXd Recording::matrix(const std::vector<std::string>& names_or_numbers, const std::string& what) const {
+  Eigen::MatrixXd m(rows(), static_cast<Eigen::Index>(names_or_numbers.size()));
+  for (std::size_t k = 0; k < names_or_numbers.size(); ++k) {
+    const auto& c = columns[column_index(names_or_numbers[k], what)];
+    m.col(static_cast<Eigen::Index>(k)) = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
+  }
+  return m;
+}
+
 namespace {
 
 // A CSV field without surrounding blanks, carriage returns or quotes.
 std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t\r\"")); }
+
+}  // namespace
+
+namespace {
+
+bool skipped(const std::string& line) {
+  const std::string t = trim(line);
+  return t.empty() || t[0] == '#';
+}
+
+enum class Parsed { number, too_large, not_a_number };
+
+// The whole of `cell` as a double ("+" allowed). A number too small for a double (1e-400) is 0;
+// one too large (1e400) is named as such.
+Parsed parse_number(const std::string& cell, double& v) {
+  const char* b = cell.data() + (!cell.empty() && cell[0] == '+');
+  const char* e = cell.data() + cell.size();
+  const auto res = std::from_chars(b, e, v);
+  if (b == e || res.ptr != e) return Parsed::not_a_number;
+  if (res.ec == std::errc::result_out_of_range) {
+    v = std::strtod(std::string(b, e).c_str(), nullptr);  // 0 (underflow) or +-inf
+    return std::isfinite(v) ? Parsed::number : Parsed::too_large;
+  }
+  return res.ec == std::errc() ? Parsed::number : Parsed::not_a_number;
+}
+
+std::vector<std::string> split_fields(const std::string& line, char separator) {
+  std::vector<std::string> out;
+  std::size_t pos = 0;
+  for (;;) {
+    const auto next = line.find(separator, pos);
+    out.push_back(trim(line.substr(pos, next == std::string::npos ? std::string::npos : next - pos)));
+    if (next == std::string::npos) return out;
+    pos = next + 1;
+  }
+}
 
 }  // namespace
 
@@ -59,65 +119,67 @@ Recording parse_csv(const std::string& text, const std::string& source) {
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
-    if (!trim(line).empty()) break;
+    if (!skipped(line)) break;
   }
-  if (trim(line).empty()) throw InputError(source + ": empty file (a header line is expected)");
-  {
-    std::stringstream hs(line);
-    std::string cell;
+  if (skipped(line)) throw InputError(source + ": empty file (a header line is expected)");
+  const char separator = line.find(',') != std::string::npos   ? ','
+                         : line.find(';') != std::string::npos ? ';'
+                         : line.find('\t') != std::string::npos ? '\t'
+                                                                : ',';
+  const std::vector<std::string> first = split_fields(line, separator);
+  bool header = false;
+  for (const auto& cell : first) {
+    double v = 0;
+    const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
+    header = header || !(nan_text || parse_number(cell, v) != Parsed::not_a_number);
+  }
+  if (header) {
     std::set<std::string> seen;
-    while (std::getline(hs, cell, ',')) {
-      cell = trim(cell);
+    for (const auto& cell : first) {
       const std::string where = source + ": line " + std::to_string(line_no) + ", column " +
                                 std::to_string(r.names.size() + 1);
       if (cell.empty()) throw InputError(where + ": empty column name in the header");
-      if (!seen.insert(cell).second) throw InputError(where + ": the column name \"" + printable(cell, 100) + "\" is given twice");
+      if (!seen.insert(cell).second)
+        throw InputError(where + ": the column name \"" + printable(cell, 100) + "\" is given twice");
       r.names.push_back(cell);
     }
+  } else {
+    for (std::size_t c = 0; c < first.size(); ++c) r.names.push_back(std::to_string(c + 1));
   }
   r.columns.resize(r.names.size());
   const std::size_t nc = r.names.size();
   int row = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
+  bool pending = !header;  // a header-less file: the first line is data
+  while (pending || std::getline(in, line)) {
+    if (!pending) ++line_no;
+    pending = false;
+    if (skipped(line)) continue;
     ++row;
-    std::size_t col = 0, pos = 0;
-    while (true) {
-      const auto comma = line.find(',', pos);
-      const std::string cell = trim(line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-      if (col >= nc)
-        throw InputError(source + ": line " + std::to_string(line_no) + ": more than " + std::to_string(nc) +
-                         " values (the header has " + std::to_string(nc) + " columns)");
+    const std::vector<std::string> cells = split_fields(line, separator);
+    if (cells.size() > nc)
+      throw InputError(source + ": line " + std::to_string(line_no) + ": more than " + std::to_string(nc) +
+                       " values (the header has " + std::to_string(nc) + " columns)");
+    if (cells.size() < nc)
+      throw InputError(source + ": line " + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                       " values, the header has " + std::to_string(nc) + " columns");
+    for (std::size_t col = 0; col < nc; ++col) {
+      const std::string& cell = cells[col];
       double v = 0;
-      const char* b = cell.data();
-      const char* e = cell.data() + cell.size();
-      auto res = std::from_chars(b, e, v);
       const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
       const auto place = [&] {
         return source + ": line " + std::to_string(line_no) + ", column " + std::to_string(col + 1) + " (\"" +
                printable(r.names[col], 100) + "\")";
       };
-      if (nan_text) {
-        v = std::nan("");
-      } else if (res.ec == std::errc::result_out_of_range && res.ptr == e) {
-        v = std::strtod(cell.c_str(), nullptr);  // 1e-400 underflows to 0 and is kept; 1e400 is not
-        if (!std::isfinite(v))
-          throw InputError(place() + ": the number " + printable(cell, 40) + " is outside the range of double precision");
-      }
-      else if (cell.empty() || res.ec != std::errc() || res.ptr != e)
-        throw InputError(place() + ": not a number: \"" + printable(cell, 40) + "\"");
+      const Parsed parsed = nan_text ? Parsed::number : parse_number(cell, v);
+      if (nan_text) v = std::nan("");
+      if (parsed == Parsed::too_large)
+        throw InputError(place() + ": the number " + printable(cell, 40) + " is outside the range of double precision");
+      if (parsed == Parsed::not_a_number) throw InputError(place() + ": not a number: \"" + printable(cell, 40) + "\"");
       if (!std::isfinite(v))
         throw InputError(source + ": data row " + std::to_string(row) + " (line " + std::to_string(line_no) +
                          "), column \"" + printable(r.names[col], 100) + "\": NaN or infinite value");
       r.columns[col].push_back(v);
-      ++col;
-      if (comma == std::string::npos) break;
-      pos = comma + 1;
     }
-    if (col != nc)
-      throw InputError(source + ": line " + std::to_string(line_no) + ": " + std::to_string(col) +
-                       " values, the header has " + std::to_string(nc) + " columns");
   }
   if (row == 0) throw InputError(source + ": no data rows after the header");
   return r;
