@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/json_text.hpp"
 #include "sets/core/error.hpp"
 
 namespace sets {
@@ -287,12 +288,8 @@ void LpvModelStructure::validate() const {
 }
 
 LpvModelStructure parse_lpv_structure_json(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
+  // Malformed JSON and numbers beyond double (1e400) are InputErrors with line and column.
+  nlohmann::json j = parse_json_text(text, source);
   if (!j.is_object()) throw InputError(source + ": expected a JSON object with fields alpha, a, b");
   LpvModelStructure m;
   if (j.contains("alpha")) {
