@@ -6,6 +6,7 @@
 #include "sets/core/bool_interval.hpp"
 #include "sets/core/error.hpp"
 #include "sets/core/exit_code.hpp"
+#include "sets/core/printable.hpp"
 
 #include "sets/numeric/interval.hpp"
 #include "sets/numeric/interval_matrix.hpp"
@@ -20,6 +21,7 @@
 #include "sets/domains/zonotope.hpp"
 
 #include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/fps/outer_zonotope.hpp"
 
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
@@ -32,6 +34,7 @@
 
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 
