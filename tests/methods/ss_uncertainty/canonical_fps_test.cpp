@@ -4,6 +4,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 
@@ -118,7 +119,7 @@ TEST(CanonicalFps, FalsifiedRowWithoutParametersEmptiesTheSet) {
 
 // The canonical regression of the paper's form splits into the blocks of Remark 1.
 TEST(CanonicalFps, PaperRegressionSplitsByEquation) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   const sets::CanonicalStructure st(rows, 2, 2, false);
   const auto canon = sets::canonical_form(sys, rows);
