@@ -1,6 +1,7 @@
 #pragma once
-// Simulation of a model file against a recording: fixed-step RK4 with substeps, inputs held over a
-// sample, `sampled` signals evaluated at the sample instants and held until the next one.
+// Simulation of a model file against a recording: fixed-step RK4 with substeps, each input between
+// samples as the model file declares it (held by default; sets/data/intersample.hpp), `sampled`
+// signals evaluated at the sample instants and held until the next one.
 //
 // Expressions are muparser expressions over t, Ts, parameters, inputs, states, signals and
 // sampled signals, plus prev(x, n): the value of x n >= 1 samples earlier (the first sample when
