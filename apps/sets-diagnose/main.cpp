@@ -134,6 +134,9 @@ int main(int argc, char** argv) {
   app.add_flag("--suite", suite, "diagnose every synthetic plant and print the confusion table (markdown)");
   app.add_option("--threads", threads, "threads for the competing hypotheses")->check(CLI::Range(1, 64));
   app.add_flag("--quiet", quiet, "no progress messages on stderr");
+  std::string intersample;
+  app.add_option("--intersample", intersample,
+                 "every input between samples: zoh (held), foh (linear) or bl (band-limited); overrides the model file");
   CLI11_PARSE(app, argc, argv);
   try {
     if (suite) {
@@ -210,6 +213,7 @@ int main(int argc, char** argv) {
     DiagnosisOptions opt;
     opt.threads = threads;
     if (no_floor) opt.noise_floor_factor = 0;
+    if (!intersample.empty()) opt.intersample = parse_intersample(intersample, "--intersample");
     if (!quiet) opt.progress = [](const std::string& s) { std::cerr << "[sets-diagnose] " << s << std::endl; };
     const Diagnosis d = diagnose(model, est, have_val ? &val : nullptr, opt);
     const std::string augmented_text = to_json_text(d.augmented);

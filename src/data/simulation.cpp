@@ -21,14 +21,6 @@ Eigen::VectorXd SimulationResult::series(const std::string& name) const {
   throw InputError("no recorded signal \"" + name + "\"");
 }
 
-double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y) {
-  if (y.size() < 5) return 0;
-  std::vector<double> d;
-  for (Eigen::Index k = 2; k < y.size(); ++k) d.push_back(std::abs(y[k] - 2 * y[k - 1] + y[k - 2]));
-  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
-  return d[d.size() / 2] / 0.6745 / std::sqrt(6.0);
-}
-
 double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat) {
   const double den = (y.array() - y.mean()).matrix().norm();
   if (!(den > 0)) return (y - yhat).norm() == 0 ? 100.0 : -1e9;

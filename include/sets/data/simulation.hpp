@@ -72,10 +72,6 @@ class Simulator {
 /// Checks a model against a recording without simulating (same errors as the constructor).
 void check_model(const ModelFile& model, const Recording& data);
 
-/// Robust noise level of a measured signal from its second difference (the signal itself is
-/// smooth at the sampling rate; the noise is not): sigma = MAD(d2) / 0.6745 / sqrt(6).
-double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y);
-
 /// fit = 100 (1 - ||y - yhat|| / ||y - mean y||) in percent.
 double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat);
 
