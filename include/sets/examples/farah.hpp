@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/models/state_space_model.hpp"
 
 namespace sets::farah {
 

@@ -17,16 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "sets/models/state_space_model.hpp"
+
 namespace sets {
-
-struct StateSpaceModel {
-  Eigen::MatrixXd A, B, C, D;
-};
-
-/// Simulates x(t+1) = A x(t) + B u(t), y(t) = C x(t) + D u(t) from x(0) = x0 (zero if empty);
-/// u is N x nu, the result N x ny (time along rows).
-Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::MatrixXd& u,
-                         const Eigen::VectorXd& x0 = Eigen::VectorXd());
 
 /// One row of the extended observability matrix Gamma_p: output `output` at lag `lag`
 /// (the row C(output,:) A^lag).
