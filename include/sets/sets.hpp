@@ -39,6 +39,8 @@
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
+#include "sets/methods/ss_uncertainty/canonical_fps.hpp"
+#include "sets/methods/ss_uncertainty/state_enclosure.hpp"
 
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 

@@ -283,6 +283,18 @@ CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eig
   return r;
 }
 
+Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool with_current) {
+  const int N = static_cast<int>(u.rows()), nu = static_cast<int>(u.cols()), p = past;
+  if (p < 1 || N <= p) throw InputError("past_input_regressor: need 1 <= p < N");
+  Eigen::MatrixXd Z(N - p, nu * p + (with_current ? nu : 0));
+  for (int k = 0; k < N - p; ++k) {
+    const int t = p + k;
+    for (int b = 0; b < p; ++b) Z.block(k, b * nu, 1, nu) = u.row(t - p + b);
+    if (with_current) Z.block(k, p * nu, 1, nu) = u.row(t);
+  }
+  return Z;
+}
+
 PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
                                      const PropagatorOptions& o) {
   const int N = static_cast<int>(u.rows());
@@ -310,13 +322,8 @@ PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::Matr
                        "): a constant input does not excite the system, CK cannot be estimated");
 
   // Step 1: y(t) = CK u_p(t) + D u(t), t = p .. N-1.
-  Eigen::MatrixXd Z(M, cols), Y(M, ny);
-  for (int k = 0; k < M; ++k) {
-    const int t = p + k;
-    for (int b = 0; b < p; ++b) Z.block(k, b * nu, 1, nu) = u.row(t - p + b);
-    if (o.estimate_d) Z.block(k, p * nu, 1, nu) = u.row(t);
-    Y.row(k) = y.row(t);
-  }
+  const Eigen::MatrixXd Z = past_input_regressor(u, p, o.estimate_d);
+  const Eigen::MatrixXd Y = y.bottomRows(M);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Z);
   qr.setThreshold(1e-10);
   if (qr.rank() < cols)

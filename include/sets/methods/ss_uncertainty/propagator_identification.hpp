@@ -103,6 +103,10 @@ CanonicalRegression canonical_regression(const CanonicalStructure& structure,
                                          const Eigen::MatrixXd& states, int first,
                                          const Eigen::MatrixXd& u, const Eigen::MatrixXd& y);
 
+/// The regressor of step 1: row k = [u_p(t)^T, u(t)^T] for t = p + k, k = 0..N-p-1, with
+/// u_p(t) = [u(t-p); ...; u(t-1)] and the u(t) block only `with_current` (D estimated).
+Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool with_current);
+
 struct PropagatorOptions {
   int order = 0;                      // n_x
   int past = 20;                      // p >= n_x
