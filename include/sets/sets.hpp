@@ -26,6 +26,7 @@
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
 #include "sets/models/state_space_model.hpp"
+#include "sets/models/transfer_function.hpp"
 #include "sets/models/time_varying_model.hpp"
 
 #include "sets/data/intersample.hpp"
