@@ -122,10 +122,12 @@ QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::MatrixXd& W
   const I inflate = I(1.0) / (I(1.0) - I(gamma_n(std::max<Eigen::Index>(W.cols(), 1))));
   const I kq = boost::numeric::sqrt(I(g.kappa_q));
   for (Eigen::Index t = 0; t < W.rows(); ++t) {
-    const I norm_a = boost::numeric::sqrt(I(w2[t]) * inflate);
-    const I norm_s = boost::numeric::sqrt(I(s2[t]) * inflate);
-    b.norm[t] = norm_a.upper();
-    b.root_q[t] = (kq * (norm_s + I(g.kappa_a) * norm_a)).upper();
+    // std::sqrt is correctly rounded in the current (upward) mode: an upper bound, no mode switch
+    // (Boost's interval sqrt switches to downward for the lower end we do not need).
+    const double norm_a = std::sqrt((I(w2[t]) * inflate).upper());
+    const double norm_s = std::sqrt((I(s2[t]) * inflate).upper());
+    b.norm[t] = norm_a;
+    b.root_q[t] = (kq * (I(norm_s) + I(g.kappa_a) * I(norm_a))).upper();
   }
   return b;
 }
@@ -143,22 +145,32 @@ MarkovEllipsoid markov_ellipsoid(const VerifiedGram& g, const Eigen::MatrixXd& Z
   const Eigen::Index M = Z.rows(), c = Z.cols();
   MarkovEllipsoid m;
   double j_low = 0, level_upper = 0;
+  // Residuals of the computed estimate, eps = Y - Z g_c, and h = Z^T eps (J = ||eps||^2 - h^T R^{-1} h),
+  // in floating point with a-priori error bounds (Higham 3.1) instead of interval dot products:
+  //   |fl(Y - Z g_c) - eps|_t  <= gamma_{c+1} (|Y_t| + (|Z| |g_c|)_t) =: delta_t
+  //   |fl(Z^T e) - Z^T eps|_j  <= (|Z|^T delta)_j + gamma_M (|Z|^T |e|)_j
+  // plus one smallest subnormal per product for underflow. The bounds are products of
+  // nonnegative numbers, computed (Eigen included) in upward rounding, hence upper bounds.
+  const Eigen::VectorXd e = Y - Z * gc;
+  const Eigen::VectorXd h_fl = Z.transpose() * e;
+  const Eigen::MatrixXd Za = Z.cwiseAbs();
   {
     RoundingScope upward;
-    // Residuals of the computed estimate, enclosed; J = ||eps_c||^2 - h^T R^{-1} h, h = Z^T eps_c.
-    std::vector<I> eps(static_cast<std::size_t>(M));
+    const double tiny = std::numeric_limits<double>::denorm_min();
+    const Eigen::VectorXd ga = gc.cwiseAbs(), ea = e.cwiseAbs();
+    const Eigen::VectorXd w = Za * ga;  // >= |Z| |g_c| (upward)
+    const double gc1 = gamma_n(c + 1), gM = gamma_n(M);
+    Eigen::VectorXd delta(M);
     I sum_sq(0.0);
     for (Eigen::Index t = 0; t < M; ++t) {
-      I e(Y[t]);
-      for (Eigen::Index j = 0; j < c; ++j) e -= I(Z(t, j)) * I(gc[j]);
-      eps[static_cast<std::size_t>(t)] = e;
-      sum_sq += boost::numeric::square(e);
+      delta[t] = gc1 * (std::abs(Y[t]) + w[t]) + static_cast<double>(c + 1) * tiny;
+      sum_sq += boost::numeric::square(I(e[t]) + I(-delta[t], delta[t]));
     }
+    const Eigen::VectorXd r = Za.transpose() * (delta + gM * ea);  // upward, nonnegative
     I h_sq(0.0);
     for (Eigen::Index j = 0; j < c; ++j) {
-      I h(0.0);
-      for (Eigen::Index t = 0; t < M; ++t) h += I(Z(t, j)) * eps[static_cast<std::size_t>(t)];
-      h_sq += boost::numeric::square(h);
+      const double rj = r[j] + static_cast<double>(M) * tiny;
+      h_sq += boost::numeric::square(I(h_fl[j]) + I(-rj, rj));
     }
     const I h_norm = boost::numeric::sqrt(h_sq);
     j_low = std::max(0.0, (sum_sq - I(g.inv_norm) * h_sq).lower());
