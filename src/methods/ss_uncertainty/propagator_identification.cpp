@@ -338,7 +338,9 @@ PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::Matr
   r.gamma_k = Eigen::MatrixXd::Zero(ny * p, nu * p);
   for (int i = 0; i < p; ++i)
     for (int k = i; k < p; ++k) r.gamma_k.block(i * ny, k * nu, ny, nu) = r.markov.block(0, (k - i) * nu, ny, nu);
-  r.gamma_k_singular_values = Eigen::JacobiSVD<Eigen::MatrixXd>(r.gamma_k).singularValues();
+  // Singular values only: BDCSVD (bidiagonalisation, then divide and conquer) is several times faster
+  // than Jacobi rotations on the (p ny) x (p nu) matrix.
+  r.gamma_k_singular_values = Eigen::BDCSVD<Eigen::MatrixXd>(r.gamma_k).singularValues();
   const auto& s = r.gamma_k_singular_values;
   const double abs_tol = o.rank_tolerance * s(0);
   const int rank = s(0) > 0 ? static_cast<int>((s.array() > abs_tol).count()) : 0;
