@@ -93,7 +93,7 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
     a.noise_bound = vbar;
     a.tail_bound = tail;  // x(0) = 0 and |u| = 1: the FIR tail of the true system beyond p
     o.guaranteed = a;
-    o.guaranteed_pui = st.guaranteed_pui_runs < 0 ? o.estimate_fps_pui : run < st.guaranteed_pui_runs;
+    o.guaranteed_pui = st.guaranteed_pui_runs < 0 || run < st.guaranteed_pui_runs;
   }
   const auto result = sets::ss_uncertainty(u, y, o);
   const auto& dom = result.estimate_level_set;

@@ -22,7 +22,7 @@ struct Settings {
   std::string noise = "gaussian";    // or "uniform" (bounded: the guaranteed set's assumption holds)
   double noise_bound_sigmas = 4;     // Gaussian noise: the bound the guaranteed set assumes, in sigmas
   bool guaranteed = true;            // compute the guaranteed set in every run
-  int guaranteed_pui_runs = -1;      // its PUIs by LP in the first K runs (-1: as --fps-pui-runs)
+  int guaranteed_pui_runs = 0;       // its PUIs by LP in the first K runs (-1: all); costly (interval regressors)
   std::string json_path;
   // real data
   std::string data, inputs, outputs;
