@@ -43,6 +43,22 @@ bool ModelFile::has_symbol(const std::string& n) const {
   return false;
 }
 
+std::string ModelFile::unit(const std::string& name) const {
+  auto find = [&](const std::string& n) -> const std::string* {
+    for (const auto& [k, u] : units)
+      if (k == n) return &u;
+    return nullptr;
+  };
+  if (const auto* u = find(name)) return *u;
+  for (const auto& [symbol, column] : outputs) {
+    if (column == name)
+      if (const auto* u = find(symbol)) return *u;
+    if (symbol == name)
+      if (const auto* u = find(column)) return *u;
+  }
+  return name == "t" || (!time_column.empty() && name == time_column) ? "s" : "";
+}
+
 namespace {
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
@@ -68,6 +84,18 @@ NamedTexts read_texts(const ojson& j, const char* key, const std::string& source
 double number(const ojson& v, const std::string& source, const std::string& field) {
   if (!v.is_number()) fail(source, "field \"" + field + "\" must be a number");
   return v.get<double>();
+}
+
+// "units": {"name": "unit", ...}; a name is a symbol of the model or a column it reads.
+void read_units(const ojson& j, ModelFile& m) {
+  m.units = read_texts(j, "units", m.source, false);
+  for (const auto& [name, unit] : m.units) {
+    bool known = m.has_symbol(name) || name == m.time_column;
+    for (const auto* list : {&m.inputs, &m.outputs})
+      for (const auto& e : *list) known = known || e.second == name;
+    for (const auto& s : m.states) known = known || s.initial_column == name;
+    if (!known) fail(m.source, "\"units." + name + "\" is neither a symbol of the model nor a column it reads");
+  }
 }
 
 }  // namespace
@@ -98,7 +126,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   m.source = source;
   static const char* known[] = {"name",    "time",    "sample_time", "inputs",      "parameters",
                                 "states",  "signals", "sampled",     "derivatives", "outputs",
-                                "format_version"};
+                                "format_version", "units"};
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
@@ -189,6 +217,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   for (const auto& e : m.sampled) add(e.first, "sampled");
   for (const auto& o : m.outputs)
     if (!m.has_symbol(o.first)) fail(source, "unknown symbol \"" + o.first + "\" in \"outputs\"");
+  read_units(j, m);
   return m;
 }
 
@@ -237,6 +266,7 @@ std::string to_json_text(const ModelFile& m) {
   if (!m.sampled.empty()) j["sampled"] = texts(m.sampled);
   j["derivatives"] = texts(m.derivatives);
   j["outputs"] = texts(m.outputs);
+  if (!m.units.empty()) j["units"] = texts(m.units);
   return j.dump(2) + "\n";
 }
 
