@@ -12,6 +12,7 @@
 
 #include "sets/core/exit_code.hpp"
 #include "sets/diagnosis/diagnosis.hpp"
+#include "sets/diagnosis/report_html.hpp"
 #include "sets/core/error.hpp"
 #include "sets/models/model_file.hpp"
 #include "sets/data/recording.hpp"
@@ -39,6 +40,22 @@ std::string quote(const std::string& s) {
   std::string r = "'";
   for (char c : s) r += c == '\'' ? std::string("''") : std::string(1, c);
   return r + "'";
+}
+
+// index.html beside the figures (sets/diagnosis/report_html.hpp).
+void write_html_page(const Diagnosis& d, const fs::path& dir, const std::vector<std::string>& pngs) {
+  std::vector<ReportFigure> figures;
+  for (const auto& p : pngs) {
+    const std::string record = p == "signals_validation.png" ? "validation" : "estimation";
+    figures.push_back({p, p == "signature.png"
+                              ? "Signature: the residual of " + d.signature_output + " (measured - calibrated nominal) against " +
+                                    d.signature_variable + ", with the effects found (augmented - nominal) over it."
+                              : "The " + record + " record: measured, calibrated nominal and augmented outputs; under each, "
+                                "the residuals" + (record == "estimation" ? "; shaded: the mismatch windows." : ".")});
+  }
+  std::ofstream o(dir / "index.html");
+  o << diagnosis_html(d, figures, "augmented_model.json");
+  if (!o) throw InputError((dir / "index.html").string() + ": cannot write");
 }
 
 // Plots through gnuplot into a temporary folder inside `dir`; files are moved into place only
@@ -103,7 +120,9 @@ void write_report(const Diagnosis& d, const std::string& dir, const std::string&
       a << augmented_text;
       if (!o || !a) throw InputError(dir + ": cannot write the report");
     }
-    for (const auto& f : {std::string("report.txt"), std::string("augmented_model.json")}) pngs.push_back(f);
+    write_html_page(d, tmp, pngs);
+    for (const auto& f : {std::string("report.txt"), std::string("augmented_model.json"), std::string("index.html")})
+      pngs.push_back(f);
     for (const auto& p : pngs) fs::rename(tmp / p, fs::path(dir) / p);
     fs::remove_all(tmp);
   } catch (...) {
@@ -125,7 +144,7 @@ int main(int argc, char** argv) {
   app.add_option("--data", data_path, "recording to calibrate and diagnose on (CSV with a header, or .mat)");
   app.add_option("--validation", val_path, "second recording, used to judge the hypotheses and the fit");
   app.add_option("--json", json_path, "write the diagnosis as JSON here");
-  app.add_option("--report", report_dir, "write plots (PNG via gnuplot), report.txt and augmented_model.json here");
+  app.add_option("--report", report_dir, "write index.html, plots (PNG via gnuplot), report.txt and augmented_model.json here");
   app.add_flag("--example", example, "diagnose a built-in simulated example (no files needed)");
   std::string plant;
   bool no_floor = false;
