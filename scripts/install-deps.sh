@@ -12,4 +12,6 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libglpk-dev \
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev \
   libcli11-dev nlohmann-json3-dev libmuparser-dev libmatio-dev \
-  gnuplot-nox >/dev/null
+  gnuplot-nox \
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-matplotlib python3-pytest \
+  python3-dask python3-distributed chromium >/dev/null
