@@ -52,4 +52,6 @@ TEST(ModelFileUnits, BadUnitsNameTheField) {
   }
   EXPECT_THROW(parse_model(with(R"(, "units": {"q": 1})"), "n.json"), InputError);
   EXPECT_THROW(parse_model(with(R"(, "units": ["m"])"), "a.json"), InputError);
+  EXPECT_THROW(parse_model(with(R"(, "units": {"q": "m'\nsystem 'x'"})"), "c.json"), InputError);  // one line
+  EXPECT_THROW(parse_model(with(R"(, "units": {"q": "m\u0007"})"), "c.json"), InputError);         // no control bytes
 }
