@@ -176,6 +176,9 @@ TEST(SetIo, HostileJsonAndTextAreInputErrorsWithTheirPlace) {
   // Found by fuzz_set_json: the type was echoed raw.
   m = input_error_of([] { sets::parse_set_json("{\"type\": \"hp\x7flytope\"}", "s.json"); });
   EXPECT_TRUE(contains(m, "unknown set type 'hp\\x7flytope'")) << m;
+  // Found by fuzz_set_text: a 0-dimensional ellipsoid took the largest entry of an empty matrix
+  // (an Eigen assertion; a read past the end without assertions).
+  EXPECT_EQ(std::get<sets::Ellipsoid>(sets::from_string("Ellipsoid(dim=0, center=[], shape=[])")).dimension(), 0);
   // dim = 1e300 was cast to long: undefined behaviour.
   m = input_error_of([] { sets::from_string("Box(dim=1e300, [[0, 1]])", "s.txt"); });
   EXPECT_TRUE(contains(m, "s.txt: line 1, column 9: 'dim' must be a whole number from 0 to 100000")) << m;

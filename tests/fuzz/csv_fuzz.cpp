@@ -14,11 +14,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto& c : r.columns)
           if (static_cast<int>(c.size()) != r.rows()) sets::fuzz::bug("columns of different lengths");
         // A missing column is named in its message, escaped.
-        try {
-          (void)r.column("\x1b[31mnot there");
-          sets::fuzz::bug("column() found a column that is not there");
-        } catch (const sets::InputError& e) {
-          sets::fuzz::check_message(e, "fuzz.csv");
+        const std::string missing = "\x1b[31mnot there";
+        if (!r.has(missing)) {
+          try {
+            (void)r.column(missing);
+            sets::fuzz::bug("column() found a column that is not there");
+          } catch (const sets::InputError& e) {
+            sets::fuzz::check_message(e, "fuzz.csv");
+          }
         }
       },
       "fuzz.csv");
