@@ -25,12 +25,10 @@ void bind_lpv(py::module_& m) {
   range.def_readwrite("tolerance", &RangeOptions::tolerance).def_readwrite("max_pieces", &RangeOptions::max_pieces);
   py::class_<LpvModelStructure>(m, "LpvModelStructure",
                                 "Orders, scheduling dimension and basis functions of an LPV input-output model\n"
-                                "(Cerone–Regruto). Build it with `parse` or `cerone_regruto_example`.")
+                                "(Cerone–Regruto). Build it with `parse` or `sets.examples.cerone_regruto_structure()`.")
       .def_static("parse", &parse_lpv_structure_json, py::arg("text"), py::arg("source") = "model",
                   "From JSON text, e.g. {\"alpha\": 1, \"a\": [[\"lambda\"], [\"1\", \"lambda^2\"]], "
                   "\"b\": [[], [\"1\"], [\"lambda\", \"lambda^2\"]]}.")
-      .def_static("cerone_regruto_example", &LpvModelStructure::cerone_regruto_example,
-                  "Section IV's system: a1 = a11 l; a2 = a21 + a22 l^2; b1 = b11; b2 = b21 l + b22 l^2.")
       .def_readonly("alpha", &LpvModelStructure::alpha)
       .def_property_readonly("na", &LpvModelStructure::na)
       .def_property_readonly("nb", &LpvModelStructure::nb)
@@ -250,6 +248,21 @@ void bind_hinf(py::module_& m) {
       .def_readonly("weight", &HinfBoundResult::weight)
       .def_readonly("bound", &HinfBoundResult::bound)
       .def_readonly("unweighted", &HinfBoundResult::unweighted);
+  py::class_<HinfData> hd(m, "HinfData", "One experiment: u, y and (closed loop) the reference r, or r empty.");
+  with_keywords(hd);
+  hd.def_readwrite("u", &HinfData::u).def_readwrite("y", &HinfData::y).def_readwrite("r", &HinfData::r);
+  py::class_<HinfStructure> hs(m, "HinfStructure", "The basis and its number of functions, the priors and the frequency grid.");
+  with_keywords(hs);
+  hs.def_readwrite("basis", &HinfStructure::basis)
+      .def_readwrite("order", &HinfStructure::order)
+      .def_readwrite("priors", &HinfStructure::priors)
+      .def_readwrite("grid", &HinfStructure::grid);
+  m.def("midpoint_grid", &midpoint_grid, py::arg("points"), py::arg("w_min") = 0.0, py::arg("w_max") = M_PI,
+        "`points` frequencies at the midpoints of equal cells of [w_min, w_max] (sets-hinf-bound's --grid).");
+  m.def("hinf_bound", py::overload_cast<const HinfData&, const HinfStructure&, const HinfBoundOptions&>(&hinf_bound),
+        py::arg("data"), py::arg("structure"), py::arg("options") = HinfBoundOptions{}, release_gil(),
+        "Hakvoort–Van den Hof, the method's entry point: frequency regions, nominal model, weighting and the\n"
+        "H-infinity bound b on one data set (what sets-hinf-bound calls).");
   m.def("hinf_bound",
         [](const Eigen::Ref<const VectorXd>& u, const Eigen::Ref<const VectorXd>& y, const OrthonormalBasis& basis,
            int order, const Eigen::Ref<const VectorXd>& grid, const HinfPriors& priors, const HinfBoundOptions& options,

@@ -17,7 +17,7 @@ def write_csv(path, columns):
 
 def test_lpv_pui_equals_the_app(tmp_path, app):
     rng = np.random.default_rng(11)
-    structure = sets.LpvModelStructure.cerone_regruto_example()
+    structure = sets.examples.cerone_regruto_structure()
     theta = np.array([0.5, -0.2, 0.3, 0.1, 1.0, 0.2])
     T = 150
     u = rng.uniform(-1, 1, T)
@@ -87,7 +87,11 @@ def test_hinf_bound_equals_the_app(tmp_path, app):
     grid = np.pi * (np.arange(40) + 0.5) / 40
     basis = sets.OrthonormalBasis.kautz(0.93 * np.exp(0.66j))
     priors = sets.HinfPriors(M=M, rho=0.88, u_bar=1.0, M_ic=1.0, rho_ic=0.975)
-    res = sets.hinf_bound(u, y, basis, 20, grid, priors)
+    structure = sets.HinfStructure(basis=basis, order=20, priors=priors, grid=sets.midpoint_grid(40))
+    np.testing.assert_array_equal(structure.grid, grid)
+    res = sets.hinf_bound(sets.HinfData(u=u, y=y), structure)  # the entry point the app calls
+    old = sets.hinf_bound(u, y, basis, 20, grid, priors)  # and the long form gives the same
+    assert old.bound.b == res.bound.b
     assert res.bound.b == expected["b"]
     assert res.bound.b_grid == expected["b_grid"]
     np.testing.assert_array_equal(res.set.frequencies, expected["frequencies"])
