@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 
 #include "bindings.hpp"
+#include "sets/data/noise_level.hpp"
 #include "sets/core/error.hpp"
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
@@ -153,7 +154,27 @@ void bind_simulator(py::module_& m) {
            py::arg("parameters"), "Outputs only (samples x outputs), None on blow-up.");
   m.def("check_model", &check_model, py::arg("model"), py::arg("data"),
         "Checks a model against a recording without simulating (raises InputError).");
-  m.def("noise_sigma", &noise_sigma, py::arg("y"), "Robust noise level of a measured signal (second difference, MAD).");
+  py::enum_<NoiseMethod>(m, "NoiseMethod", "How a noise level was obtained, most reliable first.")
+      .value("repeats", NoiseMethod::repeats)
+      .value("residual_coloured", NoiseMethod::residual_coloured)
+      .value("residual_floor", NoiseMethod::residual_floor)
+      .value("output_spectrum", NoiseMethod::output_spectrum);
+  py::class_<NoiseLevelEstimate>(m, "NoiseLevelEstimate", "An estimate (not a bound) of an output's noise level.")
+      .def_readonly("sigma", &NoiseLevelEstimate::sigma, "standard deviation, output units")
+      .def_readonly("method", &NoiseLevelEstimate::method)
+      .def_readonly("reason", &NoiseLevelEstimate::reason)
+      .def_readonly("quantisation_step", &NoiseLevelEstimate::quantisation_step)
+      .def("__repr__", [](const NoiseLevelEstimate& e) {
+        return "NoiseLevelEstimate(sigma=" + std::to_string(e.sigma) + ", method=" + noise_method_name(e.method) + ")";
+      });
+  m.def("estimate_noise",
+        [](const Eigen::VectorXd& y, std::optional<Eigen::VectorXd> simulated, std::optional<Eigen::MatrixXd> inputs) {
+          py::gil_scoped_release release;
+          return estimate_noise(y, simulated.value_or(Eigen::VectorXd()), inputs.value_or(Eigen::MatrixXd()));
+        },
+        py::arg("y"), py::arg("simulated") = py::none(), py::arg("inputs") = py::none(),
+        "Noise level of a recorded output (an estimate): optionally the calibrated model's output for y\n"
+        "and the model's exogenous inputs (one column each). Says which method gave it and why.");
   m.def("fit_percent", &fit_percent, py::arg("y"), py::arg("yhat"), "100 (1 - ||y - yhat|| / ||y - mean y||).");
 }
 
