@@ -264,3 +264,76 @@ def _plain(x):
     if isinstance(x, _np.bool_):
         return bool(x)
     return x
+
+
+# ----------------------------------------------------------------------------- command line
+
+def _noop(i):
+    return i
+
+
+def task_overhead(client, tasks=200):
+    """Median wall seconds per task of `tasks` no-op tasks submitted together and gathered (the
+    scheduling and transfer cost a study's chunk pays on top of its runs), over 3 repetitions."""
+    times = []
+    for _ in range(3):
+        t0 = time.perf_counter()
+        client.gather(client.map(_noop, range(tasks), pure=False))
+        times.append((time.perf_counter() - t0) / tasks)
+    return sorted(times)[1]
+
+
+def main(argv=None):
+    """python3 -m sets.campaign {farah,diagnosis} [--runs N] [--seed S] [--workers W | --scheduler ADDR
+    | --serial] [--chunk C] [--json FILE] [--overhead]"""
+    import argparse
+    import json
+    p = argparse.ArgumentParser(prog="python3 -m sets.campaign", description=__doc__.splitlines()[0])
+    p.add_argument("study", choices=["farah", "diagnosis"], help="the Farah et al. Monte Carlo study or the diagnosis suite")
+    p.add_argument("--runs", type=int, default=1000, help="Farah runs (default 1000)")
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--samples", type=int, default=1000, help="Farah samples per run")
+    p.add_argument("--past", type=int, default=20, help="Farah past horizon")
+    p.add_argument("--fps-pui-runs", type=int, default=-1, help="Farah: FPS PUIs in the first K runs (-1: all)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--serial", action="store_true", help="in this process")
+    where.add_argument("--workers", type=int, help="LocalCluster of W worker processes (default: one per core)")
+    where.add_argument("--scheduler", help="address of a running dask-scheduler, e.g. tcp://host:8786")
+    p.add_argument("--chunk", type=int, help="runs per task (default: about 8 tasks per worker)")
+    p.add_argument("--json", help="write the merged result here (the keys the app's --json writes)")
+    p.add_argument("--overhead", action="store_true", help="also measure the per-task overhead of the cluster")
+    a = p.parse_args(argv)
+    if a.study == "farah":
+        study = FarahStudy(runs=a.runs, seed=a.seed, samples=a.samples, past=a.past, fps_pui_runs=a.fps_pui_runs)
+    else:
+        study = DiagnosisSuite()
+    client = None
+    if not a.serial:
+        if a.scheduler:
+            from distributed import Client
+            client = Client(a.scheduler)
+        else:
+            client = local_client(a.workers)
+    try:
+        result = run_study(study, client=client, serial=a.serial, chunk=a.chunk)
+        print("%s: %d runs, %.2f s wall, %.2f s CPU in the runs, %d worker(s)"
+              % (study.name, study.runs, result["seconds"], result["cpu_seconds"],
+                 result.get("workers", result.get("settings", {}).get("threads", 1))))
+        if a.overhead and client is not None:
+            print("per-task overhead (median of 3 x 200 no-op tasks): %.2f ms" % (1e3 * task_overhead(client)))
+    finally:
+        if client is not None:
+            cluster = getattr(client, "cluster", None)
+            client.close()
+            if cluster is not None and not a.scheduler:
+                cluster.close()
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(result, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    # Run from the package module (not __main__) so that the workers unpickle the same classes.
+    from sets.campaign import main as _main
+    raise SystemExit(_main())

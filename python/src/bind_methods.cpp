@@ -8,6 +8,7 @@
 #include "convert.hpp"
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 #include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
 
@@ -134,6 +135,21 @@ void bind_ss_uncertainty(py::module_& m) {
       .def_readonly("j_min", &LevelSetDomain::j_min)
       .def_readonly("ell", &LevelSetDomain::ell)
       .def_readonly("j_d", &LevelSetDomain::j_d);
+  py::class_<CanonicalFps> cf(m, "CanonicalFps",
+                             "The FPS of the canonical regression as one FPS per block of equations that share\n"
+                             "parameters (their Cartesian product).");
+  py::class_<CanonicalFps::Block>(cf, "Block")
+      .def_readonly("parameters", &CanonicalFps::Block::parameters, "indices into theta")
+      .def_readonly("rows", &CanonicalFps::Block::rows, "rows of the regression")
+      .def_readonly("set", &CanonicalFps::Block::set, "the block's FPS, in its own parameters");
+  cf.def_property_readonly("dimension", &CanonicalFps::dimension)
+      .def("__len__", &CanonicalFps::size)
+      .def_property_readonly("blocks", &CanonicalFps::blocks)
+      .def_property_readonly("falsified_rows", &CanonicalFps::falsified_rows)
+      .def("contains", &CanonicalFps::contains, py::arg("theta"),
+           "Is theta in the set (three-valued)? `no` also when a row without parameters is falsified.");
+  m.def("pui", py::overload_cast<const CanonicalFps&, const PuiOptions&>(&pui), py::arg("fps"),
+        py::arg("options") = PuiOptions{}, release_gil(), "PUIs of a CanonicalFps, block by block.");
   py::class_<SsUncertaintyResult>(m, "SsUncertaintyResult",
                                   "Farah et al.: the identified canonical model and its uncertainty domains. The\n"
                                   "names say what they are: `estimate_*` are not guaranteed (l is read from the\n"

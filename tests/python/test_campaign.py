@@ -31,11 +31,15 @@ def test_local_cluster_with_two_workers_equals_serial(study, serial):
     try:
         assert len(client.scheduler_info()["workers"]) == 2
         merged = sc.run_study(study, client=client, chunk=5)  # 3 tasks of 5, 5 and 2 runs
+        # the scale-out path: a new client of a running scheduler, by its address
+        by_address = sc.run_study(study, scheduler=client.scheduler.address, chunk=4)
+        assert len(client.scheduler_info()["workers"]) == 2, "run_study(scheduler=...) must not stop the cluster"
     finally:
         client.close()
         client.cluster.close()
-    assert merged["settings"]["threads"] == 2
+    assert merged["settings"]["threads"] == 2 and by_address["settings"]["threads"] == 2
     assert without_timing(merged) == without_timing(serial)
+    assert without_timing(by_address) == without_timing(serial)
     json.dumps(merged)  # plain JSON
 
 
