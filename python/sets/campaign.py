@@ -104,16 +104,19 @@ def _verdict(b):
 
 class FarahStudy:
     """The Monte Carlo study of Farah et al., Section V, as sets-ss-uncertainty runs it without
-    --data: `runs` data sets of `samples` samples (random binary input, white Gaussian output
-    noise at snr_db per channel), run k drawn from seed * 1000003 + k exactly as the app draws
-    it; merge() gives the keys of `sets-ss-uncertainty --json` (Table I, failure rates,
-    half-widths, settings)."""
+    --data --no-guaranteed: `runs` data sets of `samples` samples (random binary input, white
+    Gaussian or uniform output noise at snr_db per channel), run k drawn from seed * 1000003 + k
+    exactly as the app draws it; merge() gives the keys of `sets-ss-uncertainty --no-guaranteed
+    --json` (Table I, failure rates, half-widths, settings). The app's guaranteed set (its
+    default) is not in the Python study yet."""
 
     name = "farah"
 
     def __init__(self, runs=1000, seed=1, snr_db=20.0, past=20, samples=1000, estimate_d=False,
-                 residuals="all", norm="entrywise", level_factor=2.0, fps_pui_runs=-1):
+                 residuals="all", norm="entrywise", level_factor=2.0, fps_pui_runs=-1, noise="gaussian",
+                 noise_bound_sigmas=4.0):
         self.runs, self.seed, self.snr_db, self.past, self.samples = runs, seed, snr_db, past, samples
+        self.noise, self.noise_bound_sigmas = noise, noise_bound_sigmas
         self.estimate_d, self.residuals, self.norm = estimate_d, residuals, norm
         self.level_factor, self.fps_pui_runs = level_factor, fps_pui_runs
 
@@ -148,7 +151,8 @@ class FarahStudy:
 
     def run(self, k):
         rows, structure, truth, pairs = self._setup()
-        u, y = _sets.examples.farah_data(self.samples, self.snr_db, (self.seed * 1000003 + k) % 2 ** 64)
+        u, y = _sets.examples.farah_data(self.samples, self.snr_db, (self.seed * 1000003 + k) % 2 ** 64,
+                                         self.noise)
         res = _sets.ss_uncertainty(u, y, self._options(k))
         dom = res.estimate_level_set
         rec = {"run": k, "theta": list(dom.theta), "ell": dom.ell,
@@ -195,14 +199,15 @@ class FarahStudy:
         j = {"runs": n,
              "parameters": [{"name": names[i], "true": truth[i], "mean": mean[i], "std": sd[i]} for i in range(m)],
              "failure_rates": {"pairs": jpairs, "full": rate(lambda r: r["full"]),
-                               "fps_full": rate(lambda r: r["fps_full"])}}
+                               "estimate_fps_full": rate(lambda r: r["fps_full"])}}
         if pui:
-            j["failure_rates"]["fps_pui_box"] = sum(r["fps_pui"] == _OUTSIDE for r in pui) / len(pui)
+            j["failure_rates"]["estimate_fps_pui_box"] = sum(r["fps_pui"] == _OUTSIDE for r in pui) / len(pui)
         j["seconds"], j["cpu_seconds"] = seconds, cpu_seconds
         j["settings"] = {"seed": self.seed, "snr_db": self.snr_db, "past": self.past, "samples": self.samples,
                          "threads": workers, "estimate_d": self.estimate_d, "residuals": self.residuals,
                          "norm": _NORM_NAMES[self.norm],
-                         "level_factor": self.level_factor, "mean_ell": ell_mean, "pui_runs": len(pui)}
+                         "level_factor": self.level_factor, "mean_ell": ell_mean, "pui_runs": len(pui),
+                         "noise": self.noise, "noise_bound_sigmas": self.noise_bound_sigmas}
         return _plain(j)
 
 
@@ -294,6 +299,7 @@ def main(argv=None):
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--samples", type=int, default=1000, help="Farah samples per run")
     p.add_argument("--past", type=int, default=20, help="Farah past horizon")
+    p.add_argument("--noise", choices=["gaussian", "uniform"], default="gaussian", help="Farah output noise")
     p.add_argument("--fps-pui-runs", type=int, default=-1, help="Farah: FPS PUIs in the first K runs (-1: all)")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--serial", action="store_true", help="in this process")
@@ -304,7 +310,8 @@ def main(argv=None):
     p.add_argument("--overhead", action="store_true", help="also measure the per-task overhead of the cluster")
     a = p.parse_args(argv)
     if a.study == "farah":
-        study = FarahStudy(runs=a.runs, seed=a.seed, samples=a.samples, past=a.past, fps_pui_runs=a.fps_pui_runs)
+        study = FarahStudy(runs=a.runs, seed=a.seed, samples=a.samples, past=a.past, fps_pui_runs=a.fps_pui_runs,
+                           noise=a.noise)
     else:
         study = DiagnosisSuite()
     client = None

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "bindings.hpp"
+#include "sets/core/error.hpp"
 #include "sets/examples/cerone_regruto.hpp"
 #include "sets/examples/crane.hpp"
 #include "sets/examples/farah.hpp"
@@ -19,18 +20,22 @@ namespace {
 void bind_farah(py::module_& m) {
   m.def("farah_system", &farah::system, "Farah et al., Section V: the printed A, B, C with D = 0.");
   m.def("farah_data",
-        [](int samples, double snr_db, std::uint64_t seed) {
+        [](int samples, double snr_db, std::uint64_t seed, const std::string& noise) {
+          if (noise != "gaussian" && noise != "uniform")
+            throw InputError("farah_data: noise must be \"gaussian\" or \"uniform\", not \"" + noise + "\"");
           std::mt19937_64 rng(seed);
           farah::Data d;
           {
             py::gil_scoped_release release;
-            d = farah::simulate(farah::system(), samples, snr_db, rng);
+            d = farah::simulate(farah::system(), samples, snr_db, rng,
+                                noise == "uniform" ? farah::Noise::uniform : farah::Noise::gaussian);
           }
           return std::make_pair(d.u, d.y);
         },
-        py::arg("samples"), py::arg("snr_db"), py::arg("seed"),
+        py::arg("samples"), py::arg("snr_db"), py::arg("seed"), py::arg("noise") = "gaussian",
         "Farah et al., Section V: (u, y), a random binary input (samples x 2) and the noisy output\n"
-        "(samples x 2) at snr_db per channel, from std::mt19937_64(seed) as sets-ss-uncertainty draws them.");
+        "(samples x 2) at snr_db per channel (Gaussian, or uniform of the same variance), from\n"
+        "std::mt19937_64(seed) as sets-ss-uncertainty draws them.");
 }
 
 void bind_hakvoort(py::module_& m) {

@@ -45,7 +45,7 @@ def test_local_cluster_with_two_workers_equals_serial(study, serial):
 
 def test_serial_study_equals_the_app(study, serial, app, tmp_path):
     app("sets-ss-uncertainty", "--runs", study.runs, "--seed", study.seed, "--samples", study.samples, "--past",
-        study.past, "--threads", 2, "--json", tmp_path / "farah.json")
+        study.past, "--threads", 2, "--no-guaranteed", "--json", tmp_path / "farah.json")
     expected = json.loads((tmp_path / "farah.json").read_text())
     assert set(serial) == set(expected)
     assert set(serial["settings"]) == set(expected["settings"])
@@ -56,7 +56,7 @@ def test_serial_study_equals_the_app(study, serial, app, tmp_path):
         assert got["mean"] == pytest.approx(want["mean"], rel=1e-12, abs=1e-15)
         assert got["std"] == pytest.approx(want["std"], rel=1e-9, abs=1e-15)
     for key in ("seed", "snr_db", "past", "samples", "estimate_d", "residuals", "norm", "level_factor", "mean_ell",
-                "pui_runs"):
+                "pui_runs", "noise", "noise_bound_sigmas"):
         assert serial["settings"][key] == expected["settings"][key], key
 
 
