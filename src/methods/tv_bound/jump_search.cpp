@@ -31,6 +31,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <queue>
 #include <string>
 #include <vector>
@@ -309,7 +310,7 @@ class Search {
  public:
   Search(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& eps)
       : data_(data), o_(o), eps_(eps), N_(data.samples()), q_(data.parameters()),
-        F_(o.F.size() ? o.F : Eigen::VectorXd::Ones(q_)), lp_(data, o, eps, grid_positions()),
+        F_(o.F.size() ? o.F : Eigen::VectorXd::Ones(q_)), positions_(grid_positions()), lp_(data, o, eps, positions_),
         t0_(Clock::now()) {
     peak_cap_ = (F_.cwiseProduct(o.max_abs)).maxCoeff();
     gap_ = std::max(o.milp.relative_gap, 0.0);
@@ -369,9 +370,29 @@ class Search {
     return {jumps, (pi * F_.asDiagonal()).cwiseAbs().maxCoeff()};
   }
 
+  // The jumps of pi as single-position spans; nullopt if one lies off the jump grid.
+  std::optional<std::vector<Span>> jump_spans(const Eigen::MatrixXd& pi) const {
+    std::vector<Span> out;
+    const int k0 = o_.initial_difference ? 0 : 1;
+    for (int k = k0; k < N_; ++k)
+      for (int i = 0; i < q_; ++i) {
+        const double d = pi(k, i) - (k > 0 ? pi(k - 1, i) : 0.0);
+        if (std::abs(d) <= o_.mu[i] * (1 + 1e-6) + 1e-9) continue;
+        const int p = position_of(k);
+        if (p < 0) return std::nullopt;
+        out.push_back({p, p + 1, i, d > 0 ? State::up : State::down});
+      }
+    return out;
+  }
+
+  int position_of(int k) const {
+    const auto it = std::lower_bound(positions_.begin(), positions_.end(), k);
+    return it != positions_.end() && *it == k ? static_cast<int>(it - positions_.begin()) : -1;
+  }
+
   void offer(const Eigen::MatrixXd& pi) {
     const auto [jumps, peak] = objective(pi);
-    if (jumps + peak < best_) {
+    if (jumps + peak < best_ && jump_spans(pi)) {  // a point with a jump off the grid is not a solution
       best_ = jumps + peak;
       best_pi_ = pi;
     }
@@ -561,6 +582,7 @@ class Search {
   Eigen::VectorXd eps_;
   int N_, q_;
   Eigen::VectorXd F_;
+  std::vector<int> positions_;  // the samples where a jump may occur (the jump grid)
   PatternLp lp_;
   Clock::time_point t0_;
   double peak_cap_ = inf, gap_ = 0;
