@@ -318,8 +318,10 @@ class Search {
 
   TvBoundResult run() {
     offer_start();
+    if (std::isfinite(best_)) drop_jumps();  // a start with a removable jump: cheaper at once
     roots();
     while (!open_.empty() && !out_of_budget()) {
+      if (best_ < searched_) drop_jumps();  // a new incumbent: try to drop its jumps
       if (prunable(open_.top().bound)) break;
       report_progress();
       Node n = open_.top();
@@ -396,6 +398,31 @@ class Search {
       best_ = jumps + peak;
       best_pi_ = pi;
     }
+  }
+
+  // Local search on the incumbent's jumps (a dominance step: a pattern with one jump fewer is
+  // cheaper whenever it stays feasible): drop one jump at a time, keep the first drop whose exact
+  // pattern LP still keeps the noise bound, repeat. Each try is one warm-started LP.
+  void drop_jumps() {
+    const LpBasis saved = lp_.basis();
+    for (bool improved = true; improved && !out_of_budget();) {
+      improved = false;
+      const auto spans = jump_spans(best_pi_);
+      if (!spans || spans->size() > kMaxLocalJumps) break;
+      for (std::size_t d = 0; d < spans->size() && !improved && !out_of_budget(); ++d) {
+        std::vector<Span> rest;
+        for (std::size_t j = 0; j < spans->size(); ++j)
+          if (j != d) rest.push_back((*spans)[j]);
+        const int jumps = static_cast<int>(rest.size());
+        if (jumps >= prune_level()) continue;
+        const double before = best_;
+        const PatternLp::Solution s = lp_.solve(rest, std::min(peak_cap_, best_ - jumps), prune_level() - jumps);
+        if (s.feasible) offer(s.pi);
+        improved = best_ < before;
+      }
+    }
+    lp_.restore(saved);
+    searched_ = best_;
   }
 
   // The warm start, if it keeps the noise bound and the box.
@@ -587,6 +614,9 @@ class Search {
   Clock::time_point t0_;
   double peak_cap_ = inf, gap_ = 0;
   double best_ = inf, unexplored_ = inf, pruned_ = inf, next_report_ = 0;
+  double searched_ = inf;  // the incumbent value drop_jumps last started from
+  // The local search costs one LP per jump and round: only for incumbents with few jumps.
+  static constexpr std::size_t kMaxLocalJumps = 24;
   Eigen::MatrixXd best_pi_;
   std::priority_queue<Node, std::vector<Node>, Worse> open_;
   long ids_ = 0;

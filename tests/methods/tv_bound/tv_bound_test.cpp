@@ -427,6 +427,38 @@ TEST(TvBound, OffGridWarmStartIsNeverTheIncumbent) {
   }
 }
 
+TEST(TvBound, JumpSearchDropsARemovableJumpOfTheStart) {
+  // The local search on an incumbent: a warm start that is the optimum plus a short pulse in pi1
+  // (two needless jumps) is improved by dropping jumps, one warm-started LP per try. With an LP
+  // budget of 3 (drop the pulse's first jump, its second, then fail to drop the step) the tree
+  // itself is never searched, so only the local search can remove the pulse.
+  const int N = 18;
+  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
+  pi.block(7, 1, N - 7, 1).setConstant(0.5);
+  const auto data = small_data(pi, 0.01, 41, 4);
+  sets::SparseBoundOptions o;
+  o.mu = Eigen::Vector3d::Constant(1e-3);
+  o.max_abs = Eigen::Vector3d::Constant(1.0);
+  o.epsilon = sets::linf_bound(data).epsilon;
+  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides
+  o.milp.node_limit = 50000;
+  const auto opt = sets::sparse_bound(data, o);
+  ASSERT_TRUE(opt.status == sets::MilpStatus::optimal);
+  Eigen::MatrixXd start = opt.pi;
+  start.block(3, 0, 2, 1).array() += 5e-3;  // jumps up at 3, down at 5
+  o.epsilon *= 1.2;                          // room for the pulse
+  ASSERT_TRUE(data.ball().contains(sets::stack_samples(data.y) - data.regression.upsilon -
+                                       data.regression.xi * sets::stack_samples(start),
+                                   o.epsilon))
+      << "the pulse must keep the noise bound for the start to be offered";
+  o.start = start;
+  o.milp.node_limit = 3;
+  const auto r = sets::sparse_bound(data, o);
+  EXPECT_LE(r.changes.size(), opt.changes.size());
+  for (const auto& c : r.changes) EXPECT_NE(c.parameter, 0) << "the pulse's jump at " << c.sample << " stayed";
+  EXPECT_LE(r.objective, opt.objective + 5e-3 + 1e-6);  // opt (feasible here) plus at most the pulse's peak
+}
+
 namespace {
 
 // Runs f, expects an exception of type E whose message contains `names`.
