@@ -27,8 +27,11 @@
 #include "sets/models/orthonormal_basis.hpp"
 #include "sets/models/time_varying_model.hpp"
 
+#include "sets/data/intersample.hpp"
+#include "sets/data/noise_level.hpp"
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
+#include "sets/data/spectrum.hpp"
 
 #include "sets/methods/lpv_pui/lpv_model.hpp"
 
