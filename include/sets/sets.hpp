@@ -25,6 +25,7 @@
 
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
+#include "sets/models/transfer_function.hpp"
 #include "sets/models/time_varying_model.hpp"
 
 #include "sets/data/intersample.hpp"
