@@ -308,20 +308,27 @@ class PatternLp {
 
 class Search {
  public:
-  Search(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& eps)
-      : data_(data), o_(o), eps_(eps), N_(data.samples()), q_(data.parameters()),
+  Search(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& eps,
+         std::vector<Eigen::MatrixXd> candidates = {}, Clock::time_point t0 = Clock::now(), long lps_before = 0)
+      : data_(data), o_(o), eps_(eps), candidates_(std::move(candidates)), N_(data.samples()), q_(data.parameters()),
         F_(o.F.size() ? o.F : Eigen::VectorXd::Ones(q_)), positions_(grid_positions()), lp_(data, o, eps, positions_),
-        t0_(Clock::now()) {
+        t0_(t0), lps_before_(lps_before) {
     peak_cap_ = (F_.cwiseProduct(o.max_abs)).maxCoeff();
     gap_ = std::max(o.milp.relative_gap, 0.0);
   }
 
   TvBoundResult run() {
-    offer_start();
-    if (std::isfinite(best_)) drop_jumps();  // a start with a removable jump: cheaper at once
+    offer_start(o_.start);
+    for (const Eigen::MatrixXd& c : candidates_) {
+      // Its exact pattern re-solved here: the LP point keeps the noise bound to this LP's
+      // tolerance (a recomputed residual of a point on the boundary may exceed eps by rounding).
+      offer_start(c);
+      if (const auto spans = jump_spans(c)) try_pattern(*spans);
+    }
+    if (std::isfinite(best_)) improve_incumbent();  // a start with a removable or misplaced jump
     roots();
     while (!open_.empty() && !out_of_budget()) {
-      if (best_ < searched_) drop_jumps();  // a new incumbent: try to drop its jumps
+      if (best_ < searched_) improve_incumbent();  // a new incumbent: drop or move its jumps
       if (prunable(open_.top().bound)) break;
       report_progress();
       Node n = open_.top();
@@ -343,7 +350,7 @@ class Search {
   }
 
   bool out_of_budget() const {
-    if (o_.milp.node_limit > 0 && lp_.solves() >= o_.milp.node_limit) return true;
+    if (o_.milp.node_limit > 0 && lps_before_ + lp_.solves() >= o_.milp.node_limit) return true;
     return std::chrono::duration<double>(Clock::now() - t0_).count() >= o_.milp.time_limit_s;
   }
 
@@ -400,39 +407,66 @@ class Search {
     }
   }
 
-  // Local search on the incumbent's jumps (a dominance step: a pattern with one jump fewer is
-  // cheaper whenever it stays feasible): drop one jump at a time, keep the first drop whose exact
-  // pattern LP still keeps the noise bound, repeat. Each try is one warm-started LP.
-  void drop_jumps() {
+  // Local search on the incumbent's jumps, an upper-bound heuristic (the lower bound does not
+  // use it): drop one jump (a pattern with one jump fewer is cheaper whenever it stays feasible),
+  // else move one jump by a few positions (a coarse-grid incumbent has its jumps up to half a
+  // coarse step from the fine optimum's). The first improving try is kept and the search repeats.
+  // Each try is one warm-started LP of a pattern of single positions.
+  void improve_incumbent() {
     const LpBasis saved = lp_.basis();
-    for (bool improved = true; improved && !out_of_budget();) {
-      improved = false;
-      const auto spans = jump_spans(best_pi_);
-      if (!spans || spans->size() > kMaxLocalJumps) break;
-      for (std::size_t d = 0; d < spans->size() && !improved && !out_of_budget(); ++d) {
-        std::vector<Span> rest;
-        for (std::size_t j = 0; j < spans->size(); ++j)
-          if (j != d) rest.push_back((*spans)[j]);
-        const int jumps = static_cast<int>(rest.size());
-        if (jumps >= prune_level()) continue;
-        const double before = best_;
-        const PatternLp::Solution s = lp_.solve(rest, std::min(peak_cap_, best_ - jumps), prune_level() - jumps);
-        if (s.feasible) offer(s.pi);
-        improved = best_ < before;
-      }
+    while (!out_of_budget() && (drop_one_jump() || move_one_jump())) {
     }
     lp_.restore(saved);
     searched_ = best_;
   }
 
-  // The warm start, if it keeps the noise bound and the box.
-  void offer_start() {
-    if (o_.start.size() == 0) return;
-    const Eigen::VectorXd v = stack_samples(data_.y) - data_.regression.upsilon - data_.regression.xi * stack_samples(o_.start);
+  // Solves the exact pattern `spans`, offers its point; true if the incumbent improved.
+  bool try_pattern(const std::vector<Span>& spans) {
+    const int jumps = static_cast<int>(spans.size());
+    if (jumps >= prune_level() || out_of_budget()) return false;
+    const double before = best_;
+    const PatternLp::Solution s = lp_.solve(spans, std::min(peak_cap_, best_ - jumps), prune_level() - jumps);
+    if (s.feasible) offer(s.pi);
+    return best_ < before - 1e-9 * std::max(1.0, std::abs(before));
+  }
+
+  bool drop_one_jump() {
+    const auto spans = jump_spans(best_pi_);
+    if (!spans || spans->size() > kMaxLocalJumps) return false;
+    for (std::size_t d = 0; d < spans->size(); ++d) {
+      std::vector<Span> rest = *spans;
+      rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(d));
+      if (try_pattern(rest)) return true;
+    }
+    return false;
+  }
+
+  bool move_one_jump() {
+    const auto spans = jump_spans(best_pi_);
+    if (!spans || spans->size() > kMaxMoveJumps) return false;
+    for (std::size_t d = 0; d < spans->size(); ++d)
+      for (int shift : {-1, 1, -2, 2, -4, 4}) {
+        std::vector<Span> moved = *spans;
+        Span& j = moved[d];
+        j.first += shift, j.last += shift;
+        if (j.first < 0 || j.last > lp_.positions()) continue;
+        const bool clash = std::any_of(spans->begin(), spans->end(), [&](const Span& o) {
+          return o.param == j.param && o.first == j.first;
+        });
+        if (!clash && try_pattern(moved)) return true;
+      }
+    return false;
+  }
+
+  // A trajectory from outside the search (the warm start, a coarse-grid solution), if it keeps
+  // the noise bound and the box (checked here, not taken from its source).
+  void offer_start(const Eigen::MatrixXd& pi) {
+    if (pi.rows() != N_ || pi.cols() != q_) return;
+    const Eigen::VectorXd v = stack_samples(data_.y) - data_.regression.upsilon - data_.regression.xi * stack_samples(pi);
     if (!data_.ball().contains(v, eps_)) return;
     for (int i = 0; i < q_; ++i)
-      if (o_.start.col(i).cwiseAbs().maxCoeff() > o_.max_abs[i]) return;
-    offer(o_.start);
+      if (pi.col(i).cwiseAbs().maxCoeff() > o_.max_abs[i]) return;
+    offer(pi);
   }
 
   void roots() {
@@ -579,6 +613,7 @@ class Search {
     const double t = std::chrono::duration<double>(Clock::now() - t0_).count();
     if (t < next_report_) return;
     next_report_ = t + 2;
+    if (o_.grid > 1) std::fprintf(stderr, "[grid %d] ", o_.grid);
     const double lower = std::min({best_, unexplored_, pruned_, open_.empty() ? inf : open_.top().bound});
     std::fprintf(stderr, "jump search: %6.1f s  %6ld LPs  %6zu open  incumbent %.4f  bound %.4f\n", t, lp_.solves(),
                  open_.size(), best_, lower);
@@ -599,7 +634,7 @@ class Search {
     r.best_bound = std::min(lower, best_);
     r.gap = std::abs(best_ - r.best_bound) / std::max(1.0, std::abs(best_));
     r.status = r.gap <= gap_ ? MilpStatus::optimal : MilpStatus::feasible;
-    r.nodes = lp_.solves();
+    r.nodes = lps_before_ + lp_.solves();
     r.pi = best_pi_;
     return r;
   }
@@ -607,16 +642,18 @@ class Search {
   const TvBoundData& data_;
   const SparseBoundOptions& o_;
   Eigen::VectorXd eps_;
+  std::vector<Eigen::MatrixXd> candidates_;  // incumbent candidates from outside (coarse grids)
   int N_, q_;
   Eigen::VectorXd F_;
   std::vector<int> positions_;  // the samples where a jump may occur (the jump grid)
   PatternLp lp_;
-  Clock::time_point t0_;
+  Clock::time_point t0_;  // the limits count from here (coarse-grid runs included)
+  long lps_before_ = 0;    // LPs the coarse-grid runs solved
   double peak_cap_ = inf, gap_ = 0;
   double best_ = inf, unexplored_ = inf, pruned_ = inf, next_report_ = 0;
   double searched_ = inf;  // the incumbent value drop_jumps last started from
   // The local search costs one LP per jump and round: only for incumbents with few jumps.
-  static constexpr std::size_t kMaxLocalJumps = 24;
+  static constexpr std::size_t kMaxLocalJumps = 24, kMaxMoveJumps = 12;
   Eigen::MatrixXd best_pi_;
   std::priority_queue<Node, std::vector<Node>, Worse> open_;
   long ids_ = 0;
@@ -624,9 +661,48 @@ class Search {
 
 }  // namespace
 
+namespace {
+
+// Incumbents from the paper's quantized approximation: the problem restricted to a grid
+// kCoarsen times coarser has far fewer patterns, and its solutions keep every constraint of the
+// finer problem (jumps on a subset of the positions, the same eps and box), so they are feasible
+// incumbents here. Run on a share of the budget, recursively coarser while at least
+// kMinCoarsePositions positions remain. Only the incumbent is used: the lower bound of the finer
+// problem comes from its own search, so a coarse run that stops early costs time, not validity.
+constexpr int kCoarsen = 8, kMinCoarsePositions = 8;
+constexpr double kCoarseShare = 0.25, kCoarseGap = 0.02;
+
+std::optional<TvBoundResult> coarse_solution(const TvBoundData& data, const SparseBoundOptions& options) {
+  const int coarse = options.grid * kCoarsen;
+  if (data.samples() / coarse < kMinCoarsePositions) return std::nullopt;
+  SparseBoundOptions c = options;
+  c.grid = coarse;
+  c.milp.time_limit_s = options.milp.time_limit_s * kCoarseShare;
+  c.milp.relative_gap = std::max(options.milp.relative_gap, kCoarseGap);  // an incumbent, not a proof
+  if (options.milp.node_limit > 0) c.milp.node_limit = std::max<long>(1, static_cast<long>(options.milp.node_limit * kCoarseShare));
+  try {
+    return jump_search(data, c);
+  } catch (const NumericalError&) {  // no coarse solution within its budget (or none exists)
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 TvBoundResult jump_search(const TvBoundData& data, const SparseBoundOptions& options) {
+  const auto t0 = Clock::now();
   const Eigen::VectorXd eps = options.epsilon * (1 + options.epsilon_slack);
-  Search search(data, options, eps);
+  std::vector<Eigen::MatrixXd> candidates;
+  long lps = 0;  // the time and LPs of the coarse runs count against the limits
+  if (const auto c = coarse_solution(data, options)) {
+    candidates.push_back(c->pi);
+    lps = c->nodes;
+    if (options.milp.verbose)
+      std::fprintf(stderr, "jump search: %6.1f s  grid %d solved to objective %.4f (bound %.4f): an incumbent for grid %d\n",
+                   std::chrono::duration<double>(Clock::now() - t0).count(), options.grid * kCoarsen, c->objective,
+                   c->best_bound, options.grid);
+  }
+  Search search(data, options, eps, std::move(candidates), t0, lps);
   return search.run();
 }
 
