@@ -113,8 +113,10 @@ bool recursion_reproduces_xi(const BiaffineRegression& reg) {
 // the safe bound never degenerates to -inf.
 class PatternLp {
  public:
+  // `excess_columns`: adds z_i(k) >= |Delta pi_i(k)| - mu_i, z >= 0 at every jump position (the
+  // reweighted-l1 heuristic's LP; the pattern LPs of the search leave them out).
   PatternLp(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& eps,
-            std::vector<int> positions)
+            std::vector<int> positions, bool excess_columns = false)
       : N_(data.samples()), q_(data.parameters()), l_(data.outputs()), positions_(std::move(positions)),
         mu_(o.mu), eps_(eps), lp_(N_ * q_) {
     const Eigen::VectorXd F = o.F.size() ? o.F : Eigen::VectorXd::Ones(q_);
@@ -137,6 +139,17 @@ class PatternLp {
         if (k > 0) row.emplace_back((k - 1) * q_ + i, -1.0);
         jump_row_[static_cast<std::size_t>(k * q_ + i)] = lp_.add_row(row, -mu_[i], mu_[i]);
       }
+    if (excess_columns)
+      for (int p = 0; p < static_cast<int>(positions_.size()); ++p)
+        for (int i = 0; i < q_; ++i) {
+          const int k = sample(p), z = lp_.add_variables(1, 0, 2 * o.max_abs[i]);
+          excess_.emplace_back(z, i);
+          std::vector<std::pair<int, double>> row{{k * q_ + i, 1.0}, {z, -1.0}};
+          if (k > 0) row.emplace_back((k - 1) * q_ + i, -1.0);
+          lp_.add_row(row, -inf, mu_[i]);  // Delta pi - z <= mu
+          row[1].second = 1.0;
+          lp_.add_row(row, -mu_[i], inf);  // Delta pi + z >= -mu
+        }
     const WindowNormBall ball = data.ball();
     const Eigen::VectorXd offset = stack_samples(data.y) - data.regression.upsilon;
     // The residual offset - Xi Pi, either through the state recursion behind Xi (sparse rows:
@@ -279,6 +292,12 @@ class PatternLp {
     for (int j = 0; j < l_; ++j) bound -= Interval(lp_.objective()[first_e_ + j]) * Interval(eps_[j]);
     return bound.lower();
   }
+  // The excess columns' weights in the objective (one per position and parameter, position-major).
+  int excess_count() const { return static_cast<int>(excess_.size()); }
+  void set_excess_weights(std::vector<double> w) {
+    weights_ = std::move(w);
+    set_penalty(scale_);
+  }
   LpBasis basis() const { return lp_.basis(); }
   void restore(const LpBasis& b) { lp_.set_basis(b); }
 
@@ -291,6 +310,7 @@ class PatternLp {
   void set_penalty(double scale) {
     Eigen::VectorXd c = Eigen::VectorXd::Zero(lp_.num_variables());
     c[t_] = 1;
+    for (std::size_t j = 0; j < weights_.size(); ++j) c[excess_[j].first] = weights_[j];
     for (int j = 0; j < l_; ++j) c[first_e_ + j] = penalty_[j] * scale;
     lp_.set_objective(c, Sense::minimize);
     scale_ = scale;
@@ -302,6 +322,8 @@ class PatternLp {
   LinearProgram lp_;
   int t_ = -1, first_e_ = -1;
   std::vector<int> jump_row_, touched_, row_param_;
+  std::vector<std::pair<int, int>> excess_;  // (column, parameter) of z, position-major
+  std::vector<double> weights_;
   double scale_ = 0;
   long solves_ = 0;
 };
@@ -326,6 +348,11 @@ class Search {
       if (const auto spans = jump_spans(c)) try_pattern(*spans);
     }
     if (std::isfinite(best_)) improve_incumbent();  // a start with a removable or misplaced jump
+    reweighted_l1();
+    if (best_ < searched_) improve_incumbent();
+    if (o_.milp.verbose)
+      std::fprintf(stderr, "jump search: %6.1f s  %6ld LPs  incumbent %.4f from the start, reweighted l1 and local search\n",
+                   std::chrono::duration<double>(Clock::now() - t0_).count(), lps_before_ + lp_.solves(), best_);
     roots();
     while (!open_.empty() && !out_of_budget()) {
       if (best_ < searched_) improve_incumbent();  // a new incumbent: drop or move its jumps
@@ -418,6 +445,36 @@ class Search {
     }
     lp_.restore(saved);
     searched_ = best_;
+  }
+
+  // Incumbents from reweighted l1 (Candes, Wakin and Boyd 2008): min peak + sum_k w_k z_k with
+  // z_k >= |Delta pi_k| - mu over the noise bound and the box, every jump position free, then
+  // w_k = 1 / (z_k + delta) so that small excesses get expensive and vanish. Each round's point
+  // is offered, and so is the exact pattern of its jumps. An upper-bound heuristic only.
+  void reweighted_l1() {
+    if (out_of_budget() || q_ * lp_.positions() == 0) return;
+    PatternLp l1(data_, o_, eps_, positions_, true);
+    std::vector<Span> free_all;  // every jump position of every parameter unconstrained
+    for (int i = 0; i < q_; ++i) free_all.push_back({0, lp_.positions(), i, State::mixed});
+    const int P = lp_.positions();
+    std::vector<double> w(static_cast<std::size_t>(l1.excess_count()));
+    for (int p = 0; p < P; ++p)  // start: a jump of the largest size the box allows costs 1
+      for (int i = 0; i < q_; ++i) w[static_cast<std::size_t>(p * q_ + i)] = 1 / (2 * o_.max_abs[i]);
+    for (int round = 0; round < kL1Rounds && !out_of_budget(); ++round) {
+      l1.set_excess_weights(w);
+      const PatternLp::Solution s = l1.solve(free_all, peak_cap_);
+      if (!s.feasible) return;  // the heuristic's LP leaned on the noise slack: no candidate
+      offer(s.pi);
+      if (const auto spans = jump_spans(s.pi); spans && spans->size() <= kMaxLocalJumps) try_pattern(*spans);
+      for (int p = 0; p < P; ++p)
+        for (int i = 0; i < q_; ++i) {
+          const int k = lp_.sample(p);
+          const double d = s.pi(k, i) - (k > 0 ? s.pi(k - 1, i) : 0.0);
+          const double z = std::max(std::abs(d) - o_.mu[i], 0.0);
+          // delta: 1 % of the largest jump the box allows (jumps that matter are far larger)
+          w[static_cast<std::size_t>(p * q_ + i)] = 1 / (z + 0.01 * 2 * o_.max_abs[i]);
+        }
+    }
   }
 
   // Solves the exact pattern `spans`, offers its point; true if the incumbent improved.
@@ -654,6 +711,7 @@ class Search {
   double searched_ = inf;  // the incumbent value drop_jumps last started from
   // The local search costs one LP per jump and round: only for incumbents with few jumps.
   static constexpr std::size_t kMaxLocalJumps = 24, kMaxMoveJumps = 12;
+  static constexpr int kL1Rounds = 6;
   Eigen::MatrixXd best_pi_;
   std::priority_queue<Node, std::vector<Node>, Worse> open_;
   long ids_ = 0;
@@ -694,7 +752,7 @@ TvBoundResult jump_search(const TvBoundData& data, const SparseBoundOptions& opt
   const Eigen::VectorXd eps = options.epsilon * (1 + options.epsilon_slack);
   std::vector<Eigen::MatrixXd> candidates;
   long lps = 0;  // the time and LPs of the coarse runs count against the limits
-  if (const auto c = coarse_solution(data, options)) {
+  if (const auto c = options.coarse_start ? coarse_solution(data, options) : std::nullopt) {
     candidates.push_back(c->pi);
     lps = c->nodes;
     if (options.milp.verbose)

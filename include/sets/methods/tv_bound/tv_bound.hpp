@@ -114,6 +114,10 @@ struct SparseBoundOptions {
   /// bound of (14)'s (a restriction).
   int grid = 1;
   SparseSolver solver = SparseSolver::jump_search;
+  /// jump_search only: first solve the problem on an 8x coarser grid (a quarter of the limits,
+  /// to a 2 % gap) and start from its solution, which is feasible here. Upper bounds only; the
+  /// certified lower bound never uses it. Applies when the coarse grid keeps >= 8 positions.
+  bool coarse_start = true;
   SparseFormulation formulation = SparseFormulation::single_binary;  // glpk_big_m only
   /// Limits and tolerance. jump_search: node_limit counts LPs, relative_gap stops the search
   /// when (objective - bound) / max(1, objective) reaches it; the time limit is wall clock.
