@@ -23,6 +23,7 @@
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/fps/outer_zonotope.hpp"
 
+#include "sets/models/lpv_model.hpp"
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
 #include "sets/models/state_space_model.hpp"
@@ -34,8 +35,6 @@
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
 #include "sets/data/spectrum.hpp"
-
-#include "sets/methods/lpv_pui/lpv_model.hpp"
 
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"

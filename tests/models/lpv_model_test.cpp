@@ -8,7 +8,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/examples/cerone_regruto.hpp"
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/models/lpv_model.hpp"
 
 namespace {
 

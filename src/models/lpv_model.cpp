@@ -1,4 +1,4 @@
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/models/lpv_model.hpp"
 
 #include <boost/algorithm/string/classification.hpp>
 #include <boost/algorithm/string/trim.hpp>
