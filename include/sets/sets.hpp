@@ -36,6 +36,8 @@
 #include "sets/data/simulation.hpp"
 #include "sets/data/spectrum.hpp"
 
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
+
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
