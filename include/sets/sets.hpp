@@ -14,6 +14,7 @@
 #include "sets/numeric/safe_bound.hpp"
 #include "sets/numeric/tight_range.hpp"
 
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/ellipsoid.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/set_io.hpp"

@@ -111,11 +111,6 @@ Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y
 Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
                           EllipsoidCriterion criterion);
 
-/// Outer approximation of the ellipsoid by a convex polygon, for plotting a 2-D ellipsoid:
-/// `n` vertices (counter-clockwise) of a polygon circumscribed about E (each edge tangent to E), so the polygon
-/// contains E. Throws InputError unless E is 2-D.
-Eigen::MatrixXd outer_polygon(const Ellipsoid& E, int n = 64);
-
 /// Human-readable text ("Ellipsoid(dim=2, center=[..], shape=[[..],[..]])").
 std::string to_string(const Ellipsoid& E);
 

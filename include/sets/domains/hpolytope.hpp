@@ -37,9 +37,6 @@ class HPolytope {
   Eigen::VectorXd b_;
 };
 
-/// The box as 2n half-spaces (exact).
-HPolytope to_hpolytope(const IntervalVector& box);
-
 /// Is x in P? `unknown` when some a_i^T x - b_i cannot be sign-decided in interval arithmetic.
 BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x);
 /// yes/no from the exact rational simplex; `unknown` only if that solver fails.

@@ -13,7 +13,6 @@
 #include <string>
 
 #include "sets/core/bool_interval.hpp"
-#include "sets/domains/hpolytope.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -68,15 +67,6 @@ enum class ReductionMethod {
 Zonotope reduce_order(const Zonotope& Z, double order, ReductionMethod method = ReductionMethod::girard);
 /// Removes zero generators and merges parallel ones (exact up to rounding; contains Z).
 Zonotope compact(const Zonotope& Z);
-
-/// Outer H-polytope of Z. Exact facet enumeration (each facet normal from n-1 generators, in the
-/// span of G for flat zonotopes, plus equality pairs orthogonal to the span); offsets are
-/// rigorous support bounds, so the polytope always contains Z and equals it up to rounding.
-/// Throws UnsupportedError when the number of facet candidates C(m, r-1) exceeds `max_facets`.
-HPolytope to_hpolytope(const Zonotope& Z, long max_facets = 200000);
-/// Vertices of a 2-D zonotope in counter-clockwise order (a polygon a plotting tool can draw).
-/// Floating point (vertices exact up to rounding). Throws InputError unless Z is 2-D.
-Eigen::MatrixXd polygon_vertices(const Zonotope& Z);
 
 /// Alamo–Bravo–Camacho (2005) update: an outer zonotope of Z ∩ {x : |y - a^T x| <= delta},
 ///   c + lambda (y - a^T c) + [(I - lambda a^T) G, delta lambda] B,
