@@ -18,6 +18,7 @@
 #include "sets/domains/ellipsoid.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/set_io.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/domains/vpolytope.hpp"
 #include "sets/domains/zonotope.hpp"
 

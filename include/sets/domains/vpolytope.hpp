@@ -1,6 +1,7 @@
 #pragma once
-// V-polytope: the convex hull of finitely many points. Conversions to and from the other set
-// types are in sets/domains/conversions.hpp.
+// V-polytope: the convex hull of finitely many points. The generic operations (support,
+// outer_box, contains, linear_map, to_string) are declared in set_operations.hpp, the conversions
+// to and from other set types in conversions.hpp.
 //
 // Guarantees. `outer_box` and `support` are exact/rigorous (maxima over the points in interval
 // arithmetic). `contains` is decided by GLPK's exact rational simplex (yes/no; unknown only if
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "sets/core/bool_interval.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -30,15 +32,10 @@ class VPolytope {
   Eigen::MatrixXd V_;
 };
 
-IntervalVector outer_box(const VPolytope& V);
-double support(const VPolytope& V, const Eigen::VectorXd& d);
-BoolInterval contains(const VPolytope& V, const Eigen::VectorXd& x);
-/// Image A V (points mapped in floating point, rounded to nearest: approximate).
-VPolytope linear_map(const Eigen::MatrixXd& A, const VPolytope& V);
-
 /// Only the vertices of the hull (CGAL, exact), in counter-clockwise order in 2-D.
 /// 1-3 dimensions; UnsupportedError above.
 VPolytope convex_hull(const VPolytope& V);
-std::string to_string(const VPolytope& V);
+
+static_assert(ConvexSet<VPolytope>);  // the generic operations, sets/domains/set_operations.hpp
 
 }  // namespace sets

@@ -6,6 +6,9 @@
 // outward-rounded interval arithmetic and adds the rounding error as extra axis-aligned
 // generators, so the stored zonotope contains the exact one. Rank-deficient ("flat") generator
 // matrices are allowed everywhere.
+//
+// The generic operations (support, outer_box, contains, linear_map, to_string) are declared in
+// set_operations.hpp, the conversions to other set types in conversions.hpp.
 
 #include <Eigen/Core>
 
@@ -13,6 +16,7 @@
 #include <string>
 
 #include "sets/core/bool_interval.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -39,20 +43,9 @@ class Zonotope {
   Eigen::MatrixXd G_;
 };
 
-/// A Z + b (b optional): centre A c + b, generators A G, plus rounding generators.
-Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z);
 Zonotope translate(const Zonotope& Z, const Eigen::VectorXd& b);
 /// Z1 + Z2: centres added, generators concatenated (exact up to rounding of the centre).
 Zonotope minkowski_sum(const Zonotope& Z1, const Zonotope& Z2);
-
-/// Interval hull c_i +- sum_j |G_ij|, rounded outward (the tightest box containing Z).
-IntervalVector outer_box(const Zonotope& Z);
-/// Rigorous upper bound on max_{x in Z} d^T x = d^T c + sum_j |d^T g_j|.
-double support(const Zonotope& Z, const Eigen::VectorXd& d);
-/// Is x in Z? Decided by the LP  min t  s.t.  G xi = x - c, |xi_j| <= t. `no` is certified by a
-/// separating direction (support function), `yes` by a feasible xi whose residual is absorbed
-/// with a verified inverse of n independent generators; otherwise `unknown`.
-BoolInterval contains(const Zonotope& Z, const Eigen::VectorXd& x);
 
 /// Order-reduction methods: each keeps the `order*n - n` most important generators and
 /// encloses the rest in a parallelotope (a box in Girard's and Combastel's methods, a box in the
@@ -75,6 +68,6 @@ Zonotope compact(const Zonotope& Z);
 std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::VectorXd& a, double y,
                                             double delta);
 
-std::string to_string(const Zonotope& Z);
+static_assert(ConvexSet<Zonotope>);  // the generic operations, sets/domains/set_operations.hpp
 
 }  // namespace sets
