@@ -134,8 +134,8 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
   if (st.fps_pui_runs < 0 || run < st.fps_pui_runs) {
     const auto p = sets::pui(fps);  // one LP, created and destroyed on this thread
     r.pui_done = true;
-    r.fps_pui = p.empty ? outside : (sets::contains(p.box, truth) ? inside : outside);
-    r.pui_halfwidth = p.empty ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
+    r.fps_pui = p.empty() ? outside : (sets::contains(p.box, truth) ? inside : outside);
+    r.pui_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
   }
   return r;
 }
@@ -319,10 +319,11 @@ int real_data(const Settings& st) {
   for (const auto& r : id.rows) std::cout << ' ' << sets::to_string(r);
   std::cout << "\n  l = " << dom.ell << " (residuals " << sets::to_string(st.level.residuals) << ", "
             << sets::to_string(st.level.norm) << "), J_min = " << dom.j_min << ", J_D = " << dom.j_d << "\n\n";
-  if (p.empty) {
-    std::cout << "The feasible parameter set with |eps| <= l is empty: " << p.falsification.message() << '\n';
+  if (p.empty()) {
+    std::cout << "The feasible parameter set with |eps| <= l is empty: " << p.consistency.message() << '\n';
     return 2;
   }
+  if (p.consistency.falsified == sets::Falsified::unknown) std::cout << "Note: " << p.consistency.message() << "\n";
   std::cout << "  param        estimate     ellipsoid box (not guaranteed)       FPS PUI (holds only if |eps| <= l at the truth)\n";
   json jp = json::array();
   for (int i = 0; i < id.theta.size(); ++i) {

@@ -414,7 +414,7 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
           mw.falsified = yy.cwiseAbs().maxCoeff() > bound;
         } else {
           auto fps = FeasibleParameterSet::from_data(Phi, yy, dd);
-          mw.falsified = !find_conflict(fps).samples.empty();
+          mw.falsified = check_consistency(fps).certified_falsified();  // certified only
         }
         ws.push_back(mw);
         k = e + 1;
@@ -787,7 +787,7 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
     bool have_pui = false;
     try {
       pr = pui(FeasibleParameterSet::from_data(Phi, yy, dd));
-      have_pui = !pr.empty;
+      have_pui = !pr.empty();
     } catch (const std::exception& e) {
       have_pui = false;
       d.bound_note += std::string("; PUI computation failed: ") + e.what();

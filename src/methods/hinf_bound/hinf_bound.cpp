@@ -258,9 +258,9 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
         for (int j = 0; j < nw; ++j) dirs.push_back(sign * G->col(j));
     const FpsSupport sup = support(fps, dirs);
     S.lp_solves += sup.lp_solves;
-    if (sup.empty) {
+    if (sup.empty()) {  // certified only: an undecided verdict goes on (and fails below if unbounded)
       S.empty = true;
-      S.falsification = sup.falsification.message();
+      S.falsification = sup.consistency.message();
       return S;
     }
     for (int l = 0; l < n; ++l)
