@@ -7,7 +7,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
-  build-essential cmake ninja-build pkg-config \
+  build-essential cmake ninja-build pkg-config python3 \
   libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev \
   libglpk-dev \
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev \

@@ -23,8 +23,7 @@
 #include "sets/core/exit_code.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
-#include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
-#include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 
 namespace {
 
@@ -110,13 +109,15 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
     const double sigma = std::sqrt(var / std::pow(10.0, st.snr_db / 10.0));
     for (int t = 0; t < N; ++t) y(t, j) += sigma * gauss(rng);
   }
-  sets::PropagatorOptions o;
-  o.order = 3;
-  o.past = st.past;
-  o.estimate_d = st.estimate_d;
-  o.rows = rows;
-  const auto id = sets::identify_propagator(u, y, o);
-  const auto dom = sets::level_set_domain(id.regression, st.level);
+  sets::SsUncertaintyOptions o;
+  o.identification.order = 3;
+  o.identification.past = st.past;
+  o.identification.estimate_d = st.estimate_d;
+  o.identification.rows = rows;
+  o.level = st.level;
+  o.estimate_fps_pui = st.fps_pui_runs < 0 || run < st.fps_pui_runs;
+  const auto result = sets::ss_uncertainty(u, y, o);
+  const auto& dom = result.estimate_level_set;
   RunResult r;
   r.theta = dom.theta;
   r.ell = dom.ell;
@@ -127,12 +128,11 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
     r.projection.push_back(verdict(sets::contains(v.projection, tp)));
     r.slice.push_back(v.slice ? verdict(sets::contains(*v.slice, tp)) : outside);
   }
-  const auto fps = sets::regression_fps(id.regression, dom.ell_per_equation);
-  r.fps_full = verdict(fps.contains(truth));
+  r.fps_full = verdict(result.estimate_fps.contains(truth));
   const auto box = sets::outer_box(dom.ellipsoid);
   r.box_halfwidth = sets::radius(box);
-  if (st.fps_pui_runs < 0 || run < st.fps_pui_runs) {
-    const auto p = sets::pui(fps);  // one LP, created and destroyed on this thread
+  if (result.estimate_fps_pui) {  // one LP, created and destroyed on this thread
+    const auto& p = *result.estimate_fps_pui;
     r.pui_done = true;
     r.fps_pui = p.empty() ? outside : (sets::contains(p.box, truth) ? inside : outside);
     r.pui_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
@@ -299,17 +299,18 @@ int real_data(const Settings& st) {
   Eigen::MatrixXd u(table.data.rows(), ui.size()), y(table.data.rows(), yi.size());
   for (std::size_t k = 0; k < ui.size(); ++k) u.col(k) = table.data.col(ui[k]);
   for (std::size_t k = 0; k < yi.size(); ++k) y.col(k) = table.data.col(yi[k]);
-  sets::PropagatorOptions o;
-  o.order = st.order;
-  o.past = st.past;
-  o.estimate_d = st.estimate_d;
-  o.selection = parse_selection(st.selection);
-  if (!st.rows.empty()) o.rows = parse_rows(st.rows, static_cast<int>(yi.size()));
+  sets::SsUncertaintyOptions o;
+  o.identification.order = st.order;
+  o.identification.past = st.past;
+  o.identification.estimate_d = st.estimate_d;
+  o.identification.selection = parse_selection(st.selection);
+  if (!st.rows.empty()) o.identification.rows = parse_rows(st.rows, static_cast<int>(yi.size()));
+  o.level = st.level;
   const auto t0 = std::chrono::steady_clock::now();
-  const auto id = sets::identify_propagator(u, y, o);
-  const auto dom = sets::level_set_domain(id.regression, st.level);
-  const auto fps = sets::regression_fps(id.regression, dom.ell_per_equation);
-  const auto p = sets::pui(fps);
+  const auto result = sets::ss_uncertainty(u, y, o);
+  const auto& id = result.identification;
+  const auto& dom = result.estimate_level_set;
+  const auto& p = *result.estimate_fps_pui;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto names = id.structure.parameter_names();
   const auto box = sets::outer_box(dom.ellipsoid);

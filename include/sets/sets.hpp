@@ -20,6 +20,7 @@
 #include "sets/domains/zonotope.hpp"
 
 #include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/fps/outer_zonotope.hpp"
 
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
@@ -32,6 +33,7 @@
 
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 

@@ -1,13 +1,12 @@
 #pragma once
 // Private helpers (not installed): small verified linear-algebra steps shared by the set types.
+// Numeric only; the set-valued enclosures built from them are in domains/interval_enclosure.hpp.
 
 #include <Eigen/Core>
 
 #include <optional>
 
-#include "sets/domains/ellipsoid.hpp"
 #include "sets/numeric/interval_matrix.hpp"
-#include "sets/domains/zonotope.hpp"
 
 namespace sets::detail {
 
@@ -29,12 +28,4 @@ std::optional<double> inverse_deviation_bound(const Eigen::MatrixXd& A, const Ei
 std::optional<double> inverse_norm_bound(const Eigen::MatrixXd& A, const Eigen::MatrixXd& X);
 /// A symmetric double matrix M with M >= T (Loewner order) for every symmetric T in P.
 Eigen::MatrixXd upper_symmetric_bound(const IntervalMatrix& P);
-/// A stored ellipsoid that contains E(c, T) for every c in the box `c` and symmetric PSD T in P.
-Ellipsoid outer_ellipsoid(const IntervalVector& c, const IntervalMatrix& P);
-
-/// A stored zonotope containing {c + G xi} for every c in the box `c` and G in the enclosure:
-/// centre and generators at the midpoints plus one axis-aligned generator per coordinate
-/// carrying the radii (only where nonzero).
-Zonotope outer_zonotope(const IntervalVector& c, const IntervalMatrix& G);
-
 }  // namespace sets::detail

@@ -2,7 +2,7 @@
 // Zonotopes Z = {c + G xi : xi in [-1, 1]^m}: centre c (n) and generator matrix G (n x m).
 //
 // Guarantees. Every operation that computes a new zonotope (linear_map, minkowski_sum,
-// reduce_order, intersect_strip, outer_zonotope of an FPS) evaluates the exact result in
+// reduce_order, intersect_strip) evaluates the exact result in
 // outward-rounded interval arithmetic and adds the rounding error as extra axis-aligned
 // generators, so the stored zonotope contains the exact one. Rank-deficient ("flat") generator
 // matrices are allowed everywhere.
@@ -18,7 +18,6 @@
 
 namespace sets {
 
-class FeasibleParameterSet;
 
 class Zonotope {
  public:
@@ -85,18 +84,6 @@ Eigen::MatrixXd polygon_vertices(const Zonotope& Z);
 /// nullopt when Z and the strip provably do not meet.
 std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::VectorXd& a, double y,
                                             double delta);
-
-struct FpsZonotopeOptions {
-  double max_order = 10;                     // reduce after each strip when exceeded
-  ReductionMethod reduction = ReductionMethod::girard;
-  std::optional<Zonotope> initial;           // default: the zonotope of the PUI box
-};
-
-/// Outer approximation of a feasible parameter set with exact regressors by a zonotope,
-/// processing its strips one by one with the Alamo–Bravo–Camacho update. Throws
-/// UnsupportedError for interval regressors, EmptySetError when the data provably falsify the
-/// model (or the initial set), InputError if no initial set is given and the PUIs are unbounded.
-Zonotope outer_zonotope(const FeasibleParameterSet& fps, const FpsZonotopeOptions& options = {});
 
 std::string to_string(const Zonotope& Z);
 

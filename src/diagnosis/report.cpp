@@ -1,0 +1,139 @@
+// Stage 5 of the diagnosis: the JSON (stable keys) and the text report.
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#include "diagnosis/stages.hpp"
+
+namespace sets {
+
+using diagnosis_stage::fixed1;
+using diagnosis_stage::fmt;
+
+namespace {
+nlohmann::ordered_json num(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); }
+nlohmann::ordered_json fit_obj(const std::vector<std::string>& outs, const std::vector<double>& f) {
+  nlohmann::ordered_json o = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < f.size() && i < outs.size(); ++i) o[outs[i]] = num(f[i]);
+  return o;
+}
+}  // namespace
+
+std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path) {
+  using J = nlohmann::ordered_json;
+  J j;
+  J params = J::object();
+  for (const auto& n : d.free_nominal) params[n] = num(d.nominal.parameter(n)->value);
+  j["nominal"]["parameters"] = params;
+  j["nominal"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_nominal_estimation);
+  j["nominal"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_nominal_validation);
+  j["nominal"]["fit_before_calibration"]["estimation"] = fit_obj(d.outputs, d.fit_start_estimation);
+  j["nominal"]["fit_before_calibration"]["validation"] = fit_obj(d.outputs, d.fit_start_validation);
+  J windows = J::array();
+  for (const auto& w : d.windows)
+    windows.push_back({{"output", w.output}, {"start", w.start}, {"end", w.end}, {"rms", w.rms}, {"falsified", w.falsified}});
+  J regions = J::array();
+  for (const auto& r : d.regions)
+    regions.push_back({{"description", r.description}, {"variable", r.variable}, {"residual_share", r.residual_share},
+                       {"sample_share", r.sample_share}});
+  J varying = J::array();
+  for (const auto& v : d.varying) {
+    J when = J::array();
+    for (const auto& w : v.when) when.push_back({w.first, w.second});
+    J traj = J::array();
+    for (const auto& sv : v.trajectory) traj.push_back({{"start", sv.start}, {"end", sv.end}, {"value", sv.value}});
+    J jumps = J::array();
+    for (const auto& jp : v.jumps) jumps.push_back({{"time", jp.first}, {"size", jp.second}});
+    varying.push_back({{"name", v.name}, {"value", v.value}, {"range", {v.lo, v.hi}}, {"explained", v.explained}, {"when", when},
+                       {"explained_squared", v.explained_squared}, {"bound", v.bound}, {"method", v.method}, {"jumps", jumps}, {"trajectory", traj}});
+  }
+  J bands = J::array();
+  for (const auto& b : d.bands) bands.push_back({{"output", b.output}, {"band_hz", {b.lo_hz, b.hi_hz}}, {"peak_hz", b.peak_hz}});
+  j["mismatch"]["windows"] = windows;
+  j["mismatch"]["regions"] = regions;
+  j["mismatch"]["varying_parameters"] = varying;
+  j["mismatch"]["frequency_band"] = bands;
+  J bounds = J::object();
+  for (std::size_t i = 0; i < d.error_bound.size(); ++i) bounds[d.outputs[i]] = d.error_bound[i];
+  j["mismatch"]["error_bound"] = bounds;
+  J effects = J::array();
+  for (const auto& e : d.effects) {
+    J ps = J::object();
+    for (const auto& p : e.parameters)
+      ps[p.name] = {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
+                    {"statistical_95", {num(p.stat_lo), num(p.stat_hi)}},
+                    {"interval_output_error", {num(p.oe_lo), num(p.oe_hi)}},
+                    {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)}};
+    effects.push_back({{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence}});
+  }
+  j["effects"] = effects;
+  j["augmented"]["model"] = augmented_path.empty() ? J(nullptr) : J(augmented_path);
+  j["augmented"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_augmented_estimation);
+  j["augmented"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_augmented_validation);
+  j["verdict"] = d.verdict;
+  j["nothing_missing"] = d.nothing_missing;
+  j["bound_note"] = d.bound_note;
+  j["seconds"] = d.seconds;
+  return j.dump(2) + "\n";
+}
+
+std::string diagnosis_text(const Diagnosis& d) {
+  std::ostringstream o;
+  auto fitline = [&](const char* label, const std::vector<double>& f) {
+    o << "  " << std::left << std::setw(34) << label;
+    for (std::size_t i = 0; i < f.size(); ++i) o << "  " << d.outputs[i] << " " << fixed1(f[i]) << " %";
+    o << "\n";
+  };
+  o << "Fit per output (100 (1 - |y - yhat| / |y - mean y|)):\n";
+  fitline("nominal, file values, estimation", d.fit_start_estimation);
+  fitline("nominal, calibrated, estimation", d.fit_nominal_estimation);
+  if (d.has_validation) fitline("nominal, calibrated, validation", d.fit_nominal_validation);
+  o << "Calibrated nominal parameters:";
+  for (const auto& n : d.free_nominal) o << " " << n << " = " << fmt(d.nominal.parameter(n)->value, 5);
+  o << "\nWhere the nominal model fails:\n";
+  int shown = 0;
+  for (const auto& w : d.windows) {
+    if (shown++ == 4) break;
+    o << "  " << w.output << ": t = " << fmt(w.start, 4) << " .. " << fmt(w.end, 4) << " s, residual RMS " << fmt(w.rms)
+      << (w.falsified ? " (falsified: no parameter value fits inside the bound)" : "") << "\n";
+  }
+  if (d.windows.size() > 4) o << "  ... " << d.windows.size() << " windows in all\n";
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, d.regions.size()); ++i)
+    o << "  residual concentrated " << d.regions[i].description << ": " << fixed1(100 * d.regions[i].residual_share)
+      << " % of it in " << fixed1(100 * d.regions[i].sample_share) << " % of the samples\n";
+  for (const auto& b : d.bands)
+    o << "  frequency band of the " << b.output << " residual: " << fmt(b.lo_hz) << " .. " << fmt(b.hi_hz) << " Hz (peak "
+      << fmt(b.peak_hz) << " Hz)\n";
+  if (!d.varying.empty()) {
+    const auto& v = d.varying.front();
+    o << "  parameter that would have to vary most: " << v.name << " between " << fmt(v.lo, 4) << " and " << fmt(v.hi, 4)
+      << " (removes " << fixed1(100 * v.explained) << " % of the residual's window-norm bound";
+    if (!v.when.empty()) {
+      o << "; it jumps in t = ";
+      for (std::size_t w = 0; w < v.when.size(); ++w) o << (w ? ", " : "") << fmt(v.when[w].first, 4) << " .. " << fmt(v.when[w].second, 4);
+      o << " s";
+    }
+    o << ")\n";
+  }
+  o << "Verdict: " << d.verdict << "\n";
+  for (std::size_t k = 0; k < d.effects.size(); ++k) {
+    const auto& e = d.effects[k];
+    o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
+    for (const auto& p : e.parameters)
+      o << "     " << p.name << " = " << fmt(p.estimate, 5) << ", guaranteed interval [" << fmt(p.lo, 5) << ", "
+        << fmt(p.hi, 5) << "]"
+        << (p.has_ee ? " (equation error [" + fmt(p.ee_lo, 5) + ", " + fmt(p.ee_hi, 5) + "], output error [" + fmt(p.oe_lo, 5) + ", " + fmt(p.oe_hi, 5) + "])"
+                     : " (output error)")
+        << ", statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
+    o << "     evidence: " << e.evidence << "\n";
+  }
+  if (!d.effects.empty()) {
+    fitline("augmented, estimation", d.fit_augmented_estimation);
+    if (d.has_validation) fitline("augmented, validation", d.fit_augmented_validation);
+  }
+  o << "(" << fixed1(d.seconds) << " s)\n";
+  return o.str();
+}
+
+}  // namespace sets

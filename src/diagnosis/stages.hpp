@@ -1,0 +1,103 @@
+#pragma once
+// The stages of sets::diagnose (private to src/diagnosis/): one file each.
+//   calibrate_nominal.cpp  1. simulate the file's values, calibrate the nominal, the noise floor
+//   locate.cpp             2. windows, operating regions, frequency band (varying_parameters.cpp:
+//                             which parameter would have to vary, and when)
+//   hypotheses.cpp         3. competing catalogue hypotheses, added greedily
+//   augment.cpp            4. the augmented model, its fits and the new parameters' intervals
+//   report.cpp             5. JSON and text
+//   diagnosis.cpp          the pipeline and the verdict
+// See docs/methods/diagnosis.md for what each stage computes and why.
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sets/diagnosis/calibration.hpp"
+#include "sets/diagnosis/diagnosis.hpp"
+#include "sets/diagnosis/physics_catalogue.hpp"
+#include "sets/data/simulation.hpp"
+
+namespace sets::diagnosis_stage {
+
+/// What every stage reads: the inputs, the options (screening substeps resolved) and the
+/// simulators of the nominal model on both records.
+struct Context {
+  const ModelFile& model;
+  const Recording& estimation;
+  const Recording* validation;     // null without a validation record
+  const DiagnosisOptions& options; // screening_substeps > 0
+  const Simulator& exact;          // estimation record, final substeps
+  const Simulator& fast;           // estimation record, screening substeps
+  const Simulator* exact_validation;
+  std::function<void(const std::string&)> say;  // a progress line (with elapsed time)
+};
+
+// ---- small helpers shared by the stages
+/// Sum over outputs of (1 - fit/100)^2: the squared misfit the rules compare.
+double cost_of(const std::vector<double>& fit);
+Eigen::VectorXd values_of(const ModelFile& m);
+void store_values(ModelFile& m, const Eigen::VectorXd& p);
+/// Typical size of each free parameter: |value|, or a known scale by name, or 1.
+std::vector<double> scales_for(const ModelFile& m, const std::vector<int>& free,
+                               const std::vector<std::pair<std::string, double>>& known);
+/// Jacobian of the outputs (output units, outputs stacked) with respect to the free parameters,
+/// forward differences of 1e-4 of each scale (backward when the forward step blows up).
+Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, const std::vector<int>& free,
+                                const std::vector<double>& scale, const Eigen::MatrixXd& y0);
+std::string fmt(double x, int prec = 3);
+std::string fixed1(double x);
+
+// ---- 1. calibrate
+/// The fewest RK4 substeps of {1, 2, 5} whose fits agree with the final substeps within 0.2 points.
+int screening_substeps(const ModelFile& model, const Recording& estimation, const Simulator& exact, int final_substeps);
+
+struct NominalFit {
+  std::vector<int> free;               // the nominal's free parameters
+  CalibrationResult calibration;       // at the screening substeps
+  SimulationResult simulation;         // calibrated, final substeps, estimation record
+  Eigen::MatrixXd validation_outputs;  // calibrated, final substeps, validation record (empty without)
+  double cost = 0;                     // cost_of the calibrated fits (final substeps)
+};
+/// Fits of the file's values, then the calibrated nominal; fills d.fit_start_*, d.free_nominal,
+/// d.nominal and d.fit_nominal_*.
+NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
+
+struct NoiseFloor {
+  std::vector<double> sigma;  // per output
+  double cost = 0;            // the misfit (cost_of units) the noise alone gives
+};
+NoiseFloor noise_floor(const Eigen::MatrixXd& measured);
+
+// ---- 2. locate
+/// Windows, operating regions, signature, frequency band, error bounds and the time-varying
+/// estimates on the calibrated nominal.
+void locate_mismatch(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d);
+/// ||y_j - mean y_j|| per output (1 where the output is constant).
+std::vector<double> output_norms(const Eigen::MatrixXd& measured);
+
+std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const Recording& est, int substeps,
+                                                 const Eigen::VectorXd& p, const std::vector<int>& free,
+                                                 const std::vector<double>& scale, const Eigen::MatrixXd& R,
+                                                 const std::vector<double>& time, int segments, int threads);
+
+// ---- 3. hypotheses
+struct HypothesisSearch {
+  ModelFile current;                                         // calibrated, with every chosen effect
+  std::vector<Candidate> chosen;                             // in the order added
+  std::vector<std::pair<std::string, double>> known_scales;  // scales of the effects' parameters
+};
+/// Competing catalogue hypotheses added greedily; fills d.effects and d.nothing_missing.
+HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d);
+
+// ---- 4. augment
+/// The augmented model refined with the final substeps, its fits, and the new parameters'
+/// intervals; fills d.augmented, d.fit_augmented_*, d.augmented_* and the effects' parameters.
+void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch& search, Diagnosis& d);
+
+}  // namespace sets::diagnosis_stage

@@ -1,0 +1,15 @@
+#include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
+
+namespace sets {
+
+SsUncertaintyResult ss_uncertainty(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
+                                   const SsUncertaintyOptions& options) {
+  SsUncertaintyResult r;
+  r.identification = identify_propagator(u, y, options.identification);
+  r.estimate_level_set = level_set_domain(r.identification.regression, options.level);
+  r.estimate_fps = regression_fps(r.identification.regression, r.estimate_level_set.ell_per_equation);
+  if (options.estimate_fps_pui) r.estimate_fps_pui = pui(r.estimate_fps);
+  return r;
+}
+
+}  // namespace sets
