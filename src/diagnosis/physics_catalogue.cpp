@@ -175,7 +175,9 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
     c.scales.push_back(scale);
   };
   // --- force balances of mechanical pairs
-  for (const auto& [q, v] : st.mechanical) {
+  for (const auto& pair : st.mechanical) {
+    const std::string& q = pair.first;  // named, not bound: lambdas below capture them (Clang 14)
+    const std::string& v = pair.second;
     const std::string text = *model.derivative(v);
     const Eigen::VectorXd vv = nominal.series(v), qq = nominal.series(q);
     const double vrms = positive(rms(vv), 1.0), qrms = positive(rms(qq), 1.0);
@@ -287,7 +289,7 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
   }
   // --- sensors
   for (std::size_t j = 0; j < model.outputs.size(); ++j) {
-    const auto [y, col] = model.outputs[j];
+    const std::string y = model.outputs[j].first, col = model.outputs[j].second;  // captured below (Clang 14)
     const auto& mv = measured.column(col);
     const double lo = *std::min_element(mv.begin(), mv.end()), hi = *std::max_element(mv.begin(), mv.end());
     const double range = positive(hi - lo, 1.0);

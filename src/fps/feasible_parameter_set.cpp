@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -301,6 +302,27 @@ IntervalVector orthant_box(const Orthant& s, int p) {
   return box;
 }
 
+// The centre of a large ball inside the orthant piece (floating-point LP, a search aid only: the
+// caller proves membership). The radius is capped so that an unbounded piece still gives a point.
+std::optional<Eigen::VectorXd> inscribed_centre(const FeasibleParameterSet& fps, const Orthant& s) {
+  const HPolytope P = fps.orthant_polytope(s);
+  const int n = P.dimension();
+  LinearProgram lp(n);
+  const int r = lp.add_variables(1, 0.0, 1.0);
+  Eigen::VectorXd row(n + 1);
+  for (int i = 0; i < P.num_constraints(); ++i) {
+    row << P.A().row(i).transpose(), P.A().row(i).norm();
+    lp.add_row(row, -inf, P.b()[i]);
+  }
+  lp.set_objective_coordinate(r, Sense::maximize);
+  try {
+    const LpSolution sol = lp.solve();
+    if (sol.status == LpStatus::optimal && sol.x[r] > 0) return Eigen::VectorXd(sol.x.head(n));
+  } catch (const NumericalError&) {
+  }
+  return std::nullopt;
+}
+
 OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
                              const std::vector<Eigen::VectorXd>& directions) {
   OrthantLp o(fps, s, options.working_set, options.warm_start);
@@ -330,6 +352,10 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   const Eigen::VectorXd centre = 0.5 * (e.float_lo + e.float_hi);
   for (const Eigen::VectorXd& x : {mean, centre})
     if (!out.witness && x.allFinite()) out.witness = fps.contains(x) == BoolInterval::yes;
+  if (!out.witness) {  // skewed piece, or ends not computed (support only): its inscribed ball's centre
+    const std::optional<Eigen::VectorXd> x = inscribed_centre(fps, s);
+    out.witness = x && fps.contains(*x) == BoolInterval::yes;
+  }
   return out;
 }
 
