@@ -1,4 +1,4 @@
-// Stage 1 of the diagnosis: the file's values, the calibrated nominal model, the noise floor.
+// Stage 1 of the diagnosis: the file's values, the calibrated nominal model.
 
 #include <cmath>
 
@@ -49,18 +49,6 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   }
   n.cost = cost_of(d.fit_nominal_estimation);
   return n;
-}
-
-NoiseFloor noise_floor(const Eigen::MatrixXd& Y) {
-  NoiseFloor f;
-  const Eigen::Index N = Y.rows();
-  for (Eigen::Index j = 0; j < Y.cols(); ++j) {
-    const double s = noise_sigma(Y.col(j));
-    f.sigma.push_back(s);
-    const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
-    if (den > 0) f.cost += s * s * static_cast<double>(N) / den;
-  }
-  return f;
 }
 
 }  // namespace sets::diagnosis_stage

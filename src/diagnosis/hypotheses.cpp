@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "diagnosis/stages.hpp"
+#include "sets/numeric/glpk_environment.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -81,6 +82,7 @@ std::vector<Trial> run_trials(const Context& c, const std::vector<Candidate>& ca
   std::atomic<std::size_t> next{0};
   std::mutex mu;
   auto worker = [&] {
+    const GlpkThreadEnvironment glpk;  // freed when the worker ends
     for (std::size_t i; (i = next++) < cands.size();) {
       Trial t = run_trial(c, cands[i], known_scales);
       std::lock_guard<std::mutex> lock(mu);
