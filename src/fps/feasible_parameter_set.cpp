@@ -12,6 +12,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/numeric/lp_certificate.hpp"
 #include "numeric/certified_extent.hpp"
 
 namespace sets {
@@ -226,6 +227,33 @@ class OrthantLp {
   LinearProgram& lp() { return lp_; }
   bool complete() const { return added_ == static_cast<int>(in_.size()); }
 
+  /// Every sample's rows (as add_sample would add them), for exact checks on the full set.
+  LpRows all_rows() const {
+    LpRows r;
+    const auto row = [](const Eigen::VectorXd& a) {
+      std::vector<std::pair<int, double>> e;
+      for (Eigen::Index j = 0; j < a.size(); ++j)
+        if (a[j] != 0) e.emplace_back(static_cast<int>(j), a[j]);
+      return e;
+    };
+    for (Eigen::Index t = 0; t < lo_.rows(); ++t) {
+      const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
+      if (lo_row == hi_row) {
+        r.entries.push_back(row(lo_row));
+        r.lo.push_back(ylo_[t]);
+        r.hi.push_back(yhi_[t]);
+      } else {
+        r.entries.push_back(row(lo_row));
+        r.lo.push_back(-inf);
+        r.hi.push_back(yhi_[t]);
+        r.entries.push_back(row(hi_row));
+        r.lo.push_back(ylo_[t]);
+        r.hi.push_back(inf);
+      }
+    }
+    return r;
+  }
+
   /// Solves the current objective over the full set: re-solves after adding violated samples.
   LpSolution solve(int& lps) {
     for (;;) {
@@ -355,6 +383,18 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   if (!out.witness) {  // skewed piece, or ends not computed (support only): its inscribed ball's centre
     const std::optional<Eigen::VectorXd> x = inscribed_centre(fps, s);
     out.witness = x && fps.contains(*x) == BoolInterval::yes;
+  }
+  if (!out.witness) {
+    // Thin or flat pieces: the vertex an LP ended on, solved exactly from its active samples,
+    // is a point of the piece when the LP's active set is right.
+    const LpRows rows = o.all_rows();
+    Eigen::VectorXd col_lo(fps.dimension()), col_hi(fps.dimension());
+    for (int j = 0; j < fps.dimension(); ++j) {
+      col_lo[j] = s.empty() || s[static_cast<std::size_t>(j)] > 0 ? (s.empty() ? -inf : 0.0) : -inf;
+      col_hi[j] = s.empty() || s[static_cast<std::size_t>(j)] < 0 ? (s.empty() ? inf : 0.0) : inf;
+    }
+    for (const Eigen::VectorXd& x : {Eigen::VectorXd(e.lower_points.col(0)), Eigen::VectorXd(e.upper_points.col(0))})
+      if (!out.witness && x.allFinite()) out.witness = verify_feasible_point(rows, col_lo, col_hi, x);
   }
   return out;
 }

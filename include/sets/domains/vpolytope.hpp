@@ -2,8 +2,8 @@
 // V-polytope: the convex hull of finitely many points, and the H <-> V conversions.
 //
 // Guarantees. `outer_box` and `support` are exact/rigorous (maxima over the points in interval
-// arithmetic). `contains` is decided by GLPK's exact rational simplex (yes/no; unknown only if
-// that solver fails). The H <-> V conversions run in CGAL's exact arithmetic (Epeck) in 1-3
+// arithmetic). `contains` answers yes/no only with an exact certificate (convex weights
+// solved in rationals, or a Farkas certificate), else unknown (sets/numeric/lp_certificate.hpp). The H <-> V conversions run in CGAL's exact arithmetic (Epeck) in 1-3
 // dimensions and throw UnsupportedError above 3-D. to_hpolytope(VPolytope) rounds facet normals
 // and certifies offsets, so its result contains the hull; to_vpolytope(HPolytope) returns the
 // exact vertices rounded to the nearest double (not an enclosure: a vertex may lie a rounding
