@@ -6,12 +6,12 @@
 
 #include "sets/diagnosis/diagnosis.hpp"
 
-/// Writes plots (PNG via gnuplot), report.txt and augmented_model.json into `dir` as a whole:
+/// Writes index.html, plots (PNG via gnuplot), report.txt and augmented_model.json into `dir` as a whole:
 /// everything is made in a hidden folder beside it and renamed into place at the end.
 void write_report(const sets::Diagnosis& d, const std::string& dir, const std::string& augmented_text);
 
 /// The files write_report writes (a regular expression over file names).
-inline constexpr const char* kReportFiles = R"((report\.txt|augmented_model\.json|signals_[a-z]+\.png|signature\.png))";
+inline constexpr const char* kReportFiles = R"((index\.html|report\.txt|augmented_model\.json|signals_[a-z]+\.png|signature\.png))";
 
 /// Diagnoses every synthetic plant (or only `plant`) and prints the confusion table (markdown).
 void print_suite(const std::string& plant, const sets::DiagnosisOptions& options);

@@ -64,14 +64,15 @@ TEST(LpCertificate, ProvesSmallSystemsEitherWay) {
   lp.add_row(Eigen::Vector2d(1, 1), -inf, 1);
   EXPECT_TRUE(sets::prove_infeasible(lp));
   EXPECT_EQ(sets::certified_is_empty(lp), BoolInterval::yes);
-  // y = (1, 1) on the rows proves it; y = (1, 0) does not (x + y >= 2 alone is feasible).
+  // y = (1, -1) (positive on a lower side, negative on an upper side) proves it; y = (1, 0)
+  // does not (x + y >= 2 alone is feasible).
   EXPECT_TRUE(sets::verify_infeasibility_certificate(lp.rows(), lower_bounds(lp), upper_bounds(lp),
-                                                     Eigen::Vector2d(1, 1)));
+                                                     Eigen::Vector2d(1, -1)));
   EXPECT_FALSE(sets::verify_infeasibility_certificate(lp.rows(), lower_bounds(lp), upper_bounds(lp),
                                                       Eigen::Vector2d(1, 0)));
   // Multipliers off by rounding noise are repaired exactly.
   EXPECT_TRUE(sets::verify_infeasibility_certificate(lp.rows(), lower_bounds(lp), upper_bounds(lp),
-                                                     Eigen::Vector2d(1, 1 + 1e-12)));
+                                                     Eigen::Vector2d(1, -1 - 1e-12)));
   LinearProgram ok(2);
   ok.add_row(Eigen::Vector2d(1, 1), 1, 2);
   ok.add_row(Eigen::Vector2d(1, -1), 0.1, 0.1);  // an equality: a flat set
@@ -87,8 +88,14 @@ TEST(LpCertificate, SnapsAPointOntoItsExactVertex) {
   lp.add_row(Eigen::Vector2d(1, -1), 0, 0);
   const Eigen::Vector2d near(1 + 1e-15, 1 - 1e-15);
   EXPECT_TRUE(sets::verify_feasible_point(lp.rows(), lower_bounds(lp), upper_bounds(lp), near));
-  // A point far from any vertex of the set is not accepted.
-  EXPECT_FALSE(sets::verify_feasible_point(lp.rows(), lower_bounds(lp), upper_bounds(lp), Eigen::Vector2d(5, -3)));
+  // Far from it, the equalities still snap onto the vertex: a proof that the set is not empty.
+  EXPECT_TRUE(sets::verify_feasible_point(lp.rows(), lower_bounds(lp), upper_bounds(lp), Eigen::Vector2d(5, -3)));
+  // An empty system accepts no point.
+  LinearProgram empty(1);
+  empty.add_row(Eigen::VectorXd::Constant(1, 1.0), 0, 0);
+  empty.add_row(Eigen::VectorXd::Constant(1, 1.0), 1, 1);
+  EXPECT_FALSE(sets::verify_feasible_point(empty.rows(), lower_bounds(empty), upper_bounds(empty),
+                                           Eigen::VectorXd::Constant(1, 0.0)));
 }
 
 // GLPK's glp_exact first replaces every double by a nearby simple fraction (relative tolerance
