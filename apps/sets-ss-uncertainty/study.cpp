@@ -128,8 +128,8 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
   if (result.guaranteed_pui) {
     const auto& p = *result.guaranteed_pui;
     r.g_pui_done = true;
-    r.g_pui = p.empty ? outside : (sets::contains(p.box, truth) ? inside : outside);
-    r.g_halfwidth = p.empty ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
+    r.g_pui = p.empty() ? outside : (sets::contains(p.box, truth) ? inside : outside);
+    r.g_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
   }
   return r;
 }
