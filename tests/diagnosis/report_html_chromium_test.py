@@ -62,6 +62,7 @@ def main():
         sys.exit(77)
     report = out / "report"
     shutil.rmtree(report, ignore_errors=True)
+    out.mkdir(parents=True, exist_ok=True)  # a fresh build folder does not have it
     r = subprocess.run([exe, "--example", "--quiet", "--report", str(report)], capture_output=True, text=True)
     if r.returncode != 0:
         fail("sets-diagnose exited %d: %s" % (r.returncode, r.stderr))
