@@ -196,7 +196,7 @@ TEST(Pui, PointRegressorColumnsAreNotSplitIntoOrthants) {
   const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
   const auto r2 = sets::pui(fps);
   const auto all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
-  ASSERT_FALSE(r2.empty);
+  ASSERT_FALSE(r2.empty());
   EXPECT_LT(r2.box[1].lower(), 0.0);
   EXPECT_GT(r2.box[1].upper(), 0.0);
   for (const auto& o : r2.orthants) EXPECT_EQ(o.signs.at(1), 0);
