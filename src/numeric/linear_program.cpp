@@ -81,10 +81,12 @@ struct LinearProgram::Impl {
   unsigned long generation = 0;  // glpk_environment_generation() when `lp` was created
   LpRows rows;
   Eigen::VectorXd col_lo, col_hi, c;
+  Eigen::VectorXd col_max;    // largest |a_ij| of each column (for the objective's factor)
+  double obj_factor = 1;      // GLPK holds obj_factor * c (a power of 2, so exact)
   std::vector<char> integer;
   Sense sense = Sense::minimize;
   bool has_integer = false;
-  bool scaled = false;  // GLPK's scale factors match the current matrix
+  bool scaled = false;  // GLPK holds scale factors (only inside a recovering solve())
 
   Impl() { create(); }
   ~Impl() {
@@ -125,7 +127,7 @@ struct LinearProgram::Impl {
 
   void load_col(int j) {
     glp_prob* p = lp;
-    const double lo = col_lo[j], hi = col_hi[j], cj = c[j];
+    const double lo = col_lo[j], hi = col_hi[j], cj = c[j] * obj_factor;
     const bool is_int = integer[static_cast<std::size_t>(j)];
     const int dir = sense == Sense::minimize ? GLP_MIN : GLP_MAX;
     call_glpk("LinearProgram", [=] {
@@ -155,7 +157,6 @@ struct LinearProgram::Impl {
       glp_set_mat_row(p, i + 1, len, pind, pval);
       set_glpk_row_bounds(p, i, lo, hi);
     });
-    scaled = false;
   }
 
   void push_row(std::vector<std::pair<int, double>> entries, double lo, double hi) {
@@ -166,6 +167,7 @@ struct LinearProgram::Impl {
       check_coefficient(a, what + ": coefficient of column " + std::to_string(j));
     }
     prob();
+    for (const auto& [j, a] : entries) col_max[j] = std::max(col_max[j], std::abs(a));
     rows.entries.push_back(std::move(entries));
     rows.lo.push_back(lo);
     rows.hi.push_back(hi);
@@ -179,14 +181,49 @@ struct LinearProgram::Impl {
     }
   }
 
-  // GLPK's own scaling (geometric mean, then equilibration, factors rounded to powers of 2 so
-  // that scaling is exact). GLPK keeps the unscaled data and reports unscaled values; the
-  // stored copy here, on which certificates are checked, is never scaled.
-  void scale() {
-    if (scaled) return;
+  // The power of 2 that brings the objective to the size of the matrix columns it weighs:
+  // GLPK's tolerances on reduced costs and duals are absolute, and the objective +-x_j of a
+  // column with entries ~1e9 has duals ~1e-9, all "zero" to GLPK, which then stops at any
+  // vertex (seen: PUI intervals of width 0 on badly scaled regressions). A positive factor
+  // changes no optimum; the duals and the objective value are divided by it again (exactly).
+  // Only ever > 1, judged by the largest cost: a weighted objective whose big weights already
+  // give duals of size 1 is left alone (shrinking it would push its small costs under the
+  // tolerance instead).
+  double wanted_obj_factor() const {
+    double r = 0;
+    for (int j = 0; j < n(); ++j)
+      if (c[j] != 0 && col_max[j] > 0) r = std::max(r, std::abs(c[j]) / col_max[j]);
+    if (!(r > 0)) return 1;
+    return std::ldexp(1.0, std::clamp(-std::ilogb(r), 0, 200));
+  }
+
+  void set_obj_factor(double f) {
+    if (f == obj_factor) return;
+    obj_factor = f;
     glp_prob* p = lp;
-    call_glpk("LinearProgram::solve", [p] { glp_scale_prob(p, GLP_SF_GM | GLP_SF_EQ | GLP_SF_2N); });
-    scaled = true;
+    const double* pc = c.data();
+    const int count = n();
+    call_glpk("LinearProgram::solve", [=] {
+      for (int j = 0; j < count; ++j) glp_set_obj_coef(p, j + 1, pc[j] * f);
+    });
+  }
+
+  // GLPK's own scaling (geometric mean, then equilibration, factors rounded to powers of 2 so
+  // that scaling is exact), as a recovery step only. GLPK keeps the unscaled data and reports
+  // unscaled values; the stored copy here, on which certificates are checked, is never scaled.
+  // Not the default: column scaling multiplies the objective by the column factors, so on a
+  // badly scaled problem the objective +-x_j of a PUI can fall below GLPK's reduced-cost
+  // tolerance and any feasible vertex is reported optimal (seen: a PUI interval of width 0).
+  void scale(bool on) {
+    if (on == scaled) return;
+    glp_prob* p = lp;
+    call_glpk("LinearProgram::solve", [p, on] {
+      if (on)
+        glp_scale_prob(p, GLP_SF_GM | GLP_SF_EQ | GLP_SF_2N);
+      else
+        glp_unscale_prob(p);
+    });
+    scaled = on;
   }
 };
 
@@ -210,14 +247,15 @@ int LinearProgram::add_variables(int count, double lo, double hi) {
   impl_->col_lo.conservativeResize(first + count);
   impl_->col_hi.conservativeResize(first + count);
   impl_->c.conservativeResize(first + count);
+  impl_->col_max.conservativeResize(first + count);
   impl_->integer.resize(static_cast<std::size_t>(first + count), 0);
   for (int j = first; j < first + count; ++j) {
     impl_->c[j] = 0;
+    impl_->col_max[j] = 0;
     impl_->col_lo[j] = lo;
     impl_->col_hi[j] = hi;
     impl_->load_col(j);
   }
-  impl_->scaled = false;
   return first;
 }
 
@@ -303,9 +341,10 @@ void LinearProgram::set_objective(const Eigen::Ref<const Eigen::VectorXd>& c, Se
   impl_->sense = sense;
   const double* pc = impl_->c.data();
   const int n = impl_->n();
+  const double f = impl_->obj_factor;
   const int dir = sense == Sense::minimize ? GLP_MIN : GLP_MAX;
   call_glpk("LinearProgram::set_objective", [=] {
-    for (int j = 0; j < n; ++j) glp_set_obj_coef(p, j + 1, pc[j]);
+    for (int j = 0; j < n; ++j) glp_set_obj_coef(p, j + 1, pc[j] * f);
     glp_set_obj_dir(p, dir);
   });
 }
@@ -385,19 +424,31 @@ bool decided(const SimplexRun& r) {
 
 }  // namespace
 
-// Recovery, in order, until GLPK gives a verdict: (1) dual simplex from the last basis (then the
-// primal, which can prove unboundedness); (2) primal from an advanced basis; (3) dual from the
-// slack basis with the textbook ratio test and no bound shifting (a different pivoting path
-// out of cycling); (4) GLPK's exact simplex from the slack basis, as a search aid only (it
-// rounds the data; an infeasible verdict is checked by lp_certificate.hpp before it is used as
-// a proof, and an optimum is used only through safe_bound). Then NumericalError.
+// Recovery, in order, until GLPK gives a verdict: (1) dual simplex from the last basis on the
+// data as given (then the primal, which can prove unboundedness); (2) scaled (exact power-of-2
+// factors), primal from an advanced basis; (3) scaled, dual from the slack basis with the
+// textbook ratio test and no bound shifting (a different pivoting path out of cycling); (4)
+// GLPK's exact simplex from the slack basis, as a search aid only (it rounds the data; an
+// infeasible verdict is checked by lp_certificate.hpp before it is used as a proof, and an
+// optimum is used only through safe_bound). Then NumericalError. The scale factors are removed
+// again at the end, so every solve starts on the data as given.
 LpSolution LinearProgram::solve() { return solve(LpSolveOptions{}); }
 
 LpSolution LinearProgram::solve(const LpSolveOptions& options) {
   if (impl_->n() == 0) throw InputError("LinearProgram::solve: no variables");
   if (options.cutoff && std::isnan(*options.cutoff)) throw InputError("LinearProgram::solve: the cutoff is NaN");
   glp_prob* lp = impl_->prob();
-  impl_->scale();
+  struct Unscale {  // the next solve starts unscaled, whatever happens here
+    Impl* impl;
+    ~Unscale() {
+      try {
+        if (impl->generation == glpk_environment_generation()) impl->scale(false);
+      } catch (const NumericalError&) {
+      }
+    }
+  } unscale_at_exit{impl_.get()};
+  impl_->set_obj_factor(impl_->wanted_obj_factor());
+  const double f = impl_->obj_factor;
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
@@ -405,9 +456,9 @@ LpSolution LinearProgram::solve(const LpSolveOptions& options) {
   if (options.long_step) parm.r_test = GLP_RT_FLIP;
   if (options.cutoff) {  // only the dual simplex uses it; a stop there is status cutoff
     if (impl_->sense == Sense::minimize)
-      parm.obj_ul = *options.cutoff;
+      parm.obj_ul = *options.cutoff * f;
     else
-      parm.obj_ll = *options.cutoff;
+      parm.obj_ll = *options.cutoff * f;
   }
   std::string codes;
   SimplexRun run;
@@ -429,7 +480,10 @@ LpSolution LinearProgram::solve(const LpSolveOptions& options) {
   };
   bool ok = simplex(GLP_DUALP, 0);
   if (!ok && run.rc == 0) ok = simplex(GLP_PRIMAL, 0);  // the dual simplex cannot prove unboundedness
-  if (!ok) ok = simplex(GLP_PRIMAL, 1);
+  if (!ok) {
+    impl_->scale(true);
+    ok = simplex(GLP_PRIMAL, 1);
+  }
   if (!ok) {
     parm.r_test = GLP_RT_STD;
     parm.shift = GLP_OFF;
@@ -473,8 +527,10 @@ LpSolution LinearProgram::solve(const LpSolveOptions& options) {
     }
     for (int i = 0; i < m; ++i) y[i] = glp_get_row_dual(lp, i + 1);
   });
-  s.objective = objective;
+  s.objective = objective / f;
   s.iterations = iterations;
+  s.row_dual /= f;
+  s.reduced_cost /= f;
   if (s.status == LpStatus::optimal && (!std::isfinite(s.objective) || !s.x.allFinite() || !s.row_dual.allFinite()))
     throw NumericalError("LP solver returned a non-finite optimum on a problem with " + std::to_string(m) + " rows and " +
                          std::to_string(n) + " columns");
@@ -521,7 +577,10 @@ LpSolution LinearProgram::solve_exact() {
     }
     for (int i = 0; i < m; ++i) y[i] = glp_get_row_dual(lp, i + 1);
   });
-  s.objective = objective;
+  const double f = impl_->obj_factor;
+  s.objective = objective / f;
+  s.row_dual /= f;
+  s.reduced_cost /= f;
   return s;
 }
 
@@ -591,7 +650,7 @@ MilpSolution LinearProgram::solve_milp(const MilpOptions& options, const std::op
   const int limit_ms = milliseconds(options.time_limit_s, "LinearProgram::solve_milp");
   if (impl_->n() == 0) throw InputError("LinearProgram::solve_milp: no variables");
   glp_prob* lp = impl_->prob();
-  impl_->scale();
+  impl_->set_obj_factor(1);  // the MILP's objective values are reported as they are
   const auto t0 = std::chrono::steady_clock::now();
   // The relaxation first (GLPK's branch-and-cut needs an optimal LP basis).
   glp_smcp sm;
