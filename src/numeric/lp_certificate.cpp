@@ -1,6 +1,6 @@
 #include "sets/numeric/lp_certificate.hpp"
 
-#include <Eigen/QR>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -113,12 +113,14 @@ class FarkasCheck {
     return low > high;
   }
 
-  // Changes the multipliers of |forced| support rows so that g_j = 0 exactly for j in forced:
-  // the rows are chosen by a column-pivoted QR (weighted by |y|, so large multipliers move the
-  // least, relatively), the change is solved in rational arithmetic.
+  // Changes the multipliers of some support rows so that g_j = 0 exactly for j in forced. A
+  // full-pivoting LU of the (|y|-weighted, so large multipliers move the least, relatively)
+  // coefficient matrix picks r = rank independent forced columns and r support rows; the change
+  // is solved in rational arithmetic on those. The other forced columns depend on them in
+  // floating point (e.g. two identical rows) and usually come out exactly zero too; the caller
+  // re-checks every reduced cost.
   bool repair(const std::vector<int>& forced, const std::vector<Rational>& g) {
     const int k = static_cast<int>(forced.size()), s = static_cast<int>(support_.size());
-    if (k > s) return false;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(k, s);
     for (int c = 0; c < s; ++c) {
       const double w = std::abs(y_[static_cast<std::size_t>(c)].get_d());
@@ -127,21 +129,27 @@ class FarkasCheck {
         if (it != forced.end()) M(it - forced.begin(), c) = a * w;
       }
     }
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(M);
-    if (qr.rank() < k) return false;
-    std::vector<int> chosen(static_cast<std::size_t>(k));
-    for (int c = 0; c < k; ++c) chosen[static_cast<std::size_t>(c)] = qr.colsPermutation().indices()[c];
-    // E delta = -g_forced with E(r, c) = a(support[chosen[c]], forced[r]).
-    std::vector<Rational> E(static_cast<std::size_t>(k * k), Rational(0)), rhs(static_cast<std::size_t>(k));
-    for (int c = 0; c < k; ++c)
-      for (const auto& [j, a] : rows_.entries[static_cast<std::size_t>(support_[static_cast<std::size_t>(chosen[static_cast<std::size_t>(c)])])]) {
-        const auto it = std::find(forced.begin(), forced.end(), j);
-        if (it != forced.end()) E[static_cast<std::size_t>((it - forced.begin()) * k + c)] = Rational(a);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+    const int r = static_cast<int>(lu.rank());
+    if (r == 0) return false;
+    // P M Q = L U: the first r rows of P M and columns of M Q are the pivots.
+    const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> row_of(lu.permutationP().inverse());
+    std::vector<int> cols(static_cast<std::size_t>(r)), eqs(static_cast<std::size_t>(r));
+    for (int c = 0; c < r; ++c) {
+      cols[static_cast<std::size_t>(c)] = lu.permutationQ().indices()[c];                       // support rows
+      eqs[static_cast<std::size_t>(c)] = forced[static_cast<std::size_t>(row_of.indices()[c])];  // forced columns
+    }
+    // E delta = -g_eqs with E(q, c) = a(support[cols[c]], eqs[q]).
+    std::vector<Rational> E(static_cast<std::size_t>(r * r), Rational(0)), rhs(static_cast<std::size_t>(r));
+    for (int c = 0; c < r; ++c)
+      for (const auto& [j, a] : rows_.entries[static_cast<std::size_t>(support_[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])])]) {
+        const auto it = std::find(eqs.begin(), eqs.end(), j);
+        if (it != eqs.end()) E[static_cast<std::size_t>((it - eqs.begin()) * r + c)] = Rational(a);
       }
-    for (int r = 0; r < k; ++r) rhs[static_cast<std::size_t>(r)] = -g[static_cast<std::size_t>(forced[static_cast<std::size_t>(r)])];
+    for (int q = 0; q < r; ++q) rhs[static_cast<std::size_t>(q)] = -g[static_cast<std::size_t>(eqs[static_cast<std::size_t>(q)])];
     std::vector<Rational> delta;
-    if (!detail::solve_exact(std::move(E), std::move(rhs), k, delta)) return false;
-    for (int c = 0; c < k; ++c) y_[static_cast<std::size_t>(chosen[static_cast<std::size_t>(c)])] += delta[static_cast<std::size_t>(c)];
+    if (!detail::solve_exact(std::move(E), std::move(rhs), r, delta)) return false;
+    for (int c = 0; c < r; ++c) y_[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] += delta[static_cast<std::size_t>(c)];
     return true;
   }
 

@@ -51,7 +51,11 @@ bool exactly_feasible(const Eigen::MatrixXd& A, const Eigen::VectorXd& lo, const
     qp.set_l(j, std::isfinite(xlo[j]), std::isfinite(xlo[j]) ? xlo[j] : 0.0);
     qp.set_u(j, std::isfinite(xhi[j]), std::isfinite(xhi[j]) ? xhi[j] : 0.0);
   }
-  return !CGAL::solve_linear_program(qp, CGAL::Gmpzf()).is_infeasible();
+  // Bland's rule: CGAL's default pricing cycled (seemingly forever) on some of these degenerate,
+  // near-parallel systems; Bland's rule provably terminates.
+  CGAL::Quadratic_program_options options;
+  options.set_pricing_strategy(CGAL::QP_BLAND);
+  return !CGAL::solve_linear_program(qp, CGAL::Gmpzf(), options).is_infeasible();
 }
 
 }  // namespace
