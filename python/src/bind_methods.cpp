@@ -7,7 +7,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 #include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
