@@ -85,7 +85,7 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   bool have_pui = false;
   try {
     pr = pui(FeasibleParameterSet::from_data(Phi, yy, dd));
-    have_pui = !pr.empty;
+    have_pui = !pr.empty();
   } catch (const std::exception& e) {
     have_pui = false;
     d.bound_note += std::string("; PUI computation failed: ") + e.what();

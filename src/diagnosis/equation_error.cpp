@@ -332,7 +332,7 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
     PuiOptions po;
     po.orthants = p <= 5 ? OrthantSelection::all : OrthantSelection::remark2;
     const PuiResult pr = pui(FeasibleParameterSet::from_interval_data(Phi, Y), po);
-    if (pr.empty) return fail("the strips are inconsistent under the bound (the model is falsified there)");
+    if (pr.empty()) return fail("the strips are inconsistent under the bound (the model is falsified there)");
     res.built = true;
     res.guaranteed = pr.guaranteed;
     res.delta = delta;

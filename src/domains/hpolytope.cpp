@@ -9,6 +9,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/numeric/lp_certificate.hpp"
 #include "numeric/certified_extent.hpp"
 #include "numeric/verified_linear_algebra.hpp"
 
@@ -24,7 +25,7 @@ HPolytope::HPolytope(Eigen::MatrixXd A, Eigen::VectorXd b) : A_(std::move(A)), b
     if (b_[i] == -inf) throw InputError("HPolytope: b(" + std::to_string(i) + ") is -inf");
 }
 
-BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x) {
+BoolInterval contains(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (x.size() != P.dimension())
     throw InputError("contains: point has " + std::to_string(x.size()) + " entries, polytope dimension " +
                      std::to_string(P.dimension()));
@@ -131,16 +132,7 @@ std::vector<double> safe_maxima(const HPolytope& P, const std::vector<Eigen::Vec
 BoolInterval is_empty(const HPolytope& P) {
   if (P.num_constraints() == 0) return BoolInterval::no;
   LinearProgram lp = make_lp(P);
-  lp.set_objective(Eigen::VectorXd::Zero(P.dimension()), Sense::minimize);
-  try {
-    const LpSolution sol = lp.solve();
-    if (sol.status == LpStatus::optimal && contains(P, sol.x) == BoolInterval::yes) return BoolInterval::no;
-    lp.reset_basis();
-    const LpSolution ex = lp.solve_exact();
-    return ex.status == LpStatus::infeasible ? BoolInterval::yes : BoolInterval::no;
-  } catch (const NumericalError&) {
-    return BoolInterval::unknown;
-  }
+  return certified_is_empty(lp);  // exact certificates either way, else unknown
 }
 
 IntervalVector outer_box(const HPolytope& P) {
@@ -156,7 +148,9 @@ IntervalVector outer_box(const HPolytope& P) {
   return box;
 }
 
-double support(const HPolytope& P, const Eigen::VectorXd& d) { return safe_maxima(P, {d}, "support")[0]; }
+double support(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& d) {
+  return safe_maxima(P, {d}, "support")[0];
+}
 
 std::vector<double> support(const HPolytope& P, const std::vector<Eigen::VectorXd>& directions) {
   return safe_maxima(P, directions, "support");
@@ -254,7 +248,7 @@ HPolytope remove_redundant(const HPolytope& P) {
   return HPolytope(A, b);
 }
 
-HPolytope linear_map(const Eigen::MatrixXd& M, const HPolytope& P) {
+HPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& M, const HPolytope& P) {
   const int n = P.dimension();
   if (M.rows() != n || M.cols() != n)
     throw UnsupportedError("linear_map(HPolytope): only square invertible maps are supported (got " +
