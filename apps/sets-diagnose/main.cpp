@@ -15,6 +15,7 @@
 #include "sets/core/error.hpp"
 #include "sets/models/model_file.hpp"
 #include "sets/data/recording.hpp"
+#include "sets/examples/diagnosis_suite.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 
 namespace fs = std::filesystem;
@@ -119,7 +120,7 @@ int main(int argc, char** argv) {
   CLI::App app{"sets-diagnose: locate where a model and recordings differ, name the missing physics, add it, "
                "and show the fit improve"};
   std::string model_path, data_path, val_path, json_path, report_dir;
-  bool example = false, quiet = false, suite = false;
+  bool example = false, quiet = false;
   int threads = 2;
   app.add_option("--model", model_path, "model file (JSON, format version 1; see docs/model-format.md)");
   app.add_option("--data", data_path, "recording to calibrate and diagnose on (CSV with a header, or .mat)");
@@ -130,58 +131,48 @@ int main(int argc, char** argv) {
   std::string plant;
   bool no_floor = false;
   app.add_flag("--no-noise-floor", no_floor, "never stop early because the misfit is at the noise level (hypotheses must fail on their own)");
-  app.add_option("--plant", plant, "with --suite: only this synthetic plant (prints its full report)");
-  app.add_flag("--suite", suite, "diagnose every synthetic plant and print the confusion table (markdown)");
-  app.add_option("--threads", threads, "threads for the competing hypotheses")->check(CLI::Range(1, 64));
+  app.add_option("--plant", plant, "with --suite fixed: only this synthetic plant (prints its full report)");
+  std::string suite_kind;
+  int count = 40, seed = 1;
+  auto* suite_opt = app.add_option("--suite", suite_kind,
+                                   "diagnose a suite of synthetic plants with known truth and print the scores (markdown): "
+                                   "fixed (default) or random")
+                        ->expected(0, 1);
+  app.add_option("--count", count, "with --suite random: number of plants")->check(CLI::Range(1, 100000));
+  app.add_option("--seed", seed, "with --suite random: the first plant's seed")->check(CLI::Range(0, 2000000000));
+  app.add_option("--threads", threads, "threads for the competing hypotheses (with --suite: plants diagnosed at once)")->check(CLI::Range(1, 64));
   app.add_flag("--quiet", quiet, "no progress messages on stderr");
   CLI11_PARSE(app, argc, argv);
   try {
-    if (suite) {
-      // Every plant of the suite: true effect against the first effect named.
-      std::cout << "| plant | true effect | named (ranked) | right | nominal fit (val) | augmented fit (val) | s | true value: "
-                   "guaranteed interval (equation error, output error) |\n"
-                   "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
-      int right = 0, total = 0, clean = 0, clean_ok = 0, checked = 0, contained = 0;
-      for (const auto& name : synthetic_plant_names()) {
-        if (!plant.empty() && name != plant) continue;
-        const SyntheticPlant p = synthetic_plant(name);
+    if (suite_opt->count() > 0) {
+      // Synthetic plants with known truth: the fixed suite, or `count` random plants from `seed`.
+      if (suite_kind.empty()) suite_kind = "fixed";
+      if (suite_kind != "fixed" && suite_kind != "random") {
+        std::cerr << "sets-diagnose: --suite takes fixed or random, not \"" << suite_kind << "\"\n";
+        return 1;
+      }
+      SuiteOptions so;
+      so.threads = threads;
+      if (no_floor) so.diagnosis.noise_floor_factor = 0;
+      if (!quiet)
+        so.on_plant = [](const SuitePlantResult& r, int done, int total) {
+          std::string truth, named;
+          for (const auto& t : r.truth) truth += (truth.empty() ? "" : ", ") + t.name;
+          for (const auto& n : r.named) named += (named.empty() ? "" : ", ") + n;
+          std::cerr << "[sets-diagnose] " << done << "/" << total << " " << r.name << " (" << r.family << "): true "
+                    << (truth.empty() ? "none" : truth) << ", named " << (named.empty() ? "none" : named) << ", " << r.seconds << " s"
+                    << (r.error.empty() ? "" : " ERROR " + r.error) << std::endl;
+        };
+      const auto results = suite_kind == "fixed" ? run_fixed_suite(plant, so)
+                                                 : run_random_suite(static_cast<unsigned>(seed), count, so);
+      if (suite_kind == "fixed" && !plant.empty()) {
+        const SyntheticPlant p = synthetic_plant(plant);
         DiagnosisOptions opt;
         opt.threads = threads;
         if (no_floor) opt.noise_floor_factor = 0;
-        const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, opt);
-        if (!plant.empty()) std::cerr << diagnosis_text(d);
-        std::string named;
-        for (const auto& e : d.effects) named += (named.empty() ? "" : ", ") + e.name;
-        if (named.empty()) named = "none";
-        const std::string first = d.effects.empty() ? "none" : d.effects.front().name;
-        const bool ok = first == p.true_effect;
-        ++total;
-        right += ok;
-        if (p.true_effect == "none") ++clean, clean_ok += ok;
-        char buf[256];
-        std::snprintf(buf, sizeof buf, " | %.1f | %.1f | %.1f |", d.fit_nominal_validation.at(0), d.fit_augmented_validation.at(0), d.seconds);
-        // Does the reported guaranteed interval contain the true value?
-        std::string truth;
-        for (const auto& [pn, tv] : p.true_values)
-          for (const auto& e : d.effects)
-            for (const auto& ep : e.parameters)
-              if (ep.name == pn) {
-                const bool in = ep.lo <= tv && tv <= ep.hi;
-                ++checked;
-                contained += in;
-                char t[256];
-                char ee[96] = "none";
-                if (ep.has_ee) std::snprintf(ee, sizeof ee, "[%.4g, %.4g]%s", ep.ee_lo, ep.ee_hi, ep.ee_lo <= tv && tv <= ep.ee_hi ? "" : " **misses**");
-                std::snprintf(t, sizeof t, "%s = %g: [%.4g, %.4g] %s (EE %s, OE [%.4g, %.4g])", pn.c_str(), tv, ep.lo, ep.hi,
-                              in ? "contains" : "**misses**", ee, ep.oe_lo, ep.oe_hi);
-                truth += (truth.empty() ? "" : "; ") + std::string(t);
-              }
-        std::cout << "| " << name << " | " << p.true_effect << " | " << named << " | " << (ok ? "yes" : "**no**") << buf << " "
-                  << (truth.empty() ? "–" : truth) << " |\n" << std::flush;
+        std::cerr << diagnosis_text(diagnose(p.nominal, p.estimation, &p.validation, opt));
       }
-      std::cout << "\nNamed right (first effect = true effect): " << right << " of " << total << "; clean plants with no invented effect: "
-                << clean_ok << " of " << clean << "; true effect values inside the guaranteed interval: " << contained << " of "
-                << checked << "\n";
+      std::cout << suite_report(results);
       return 0;
     }
     ModelFile model;

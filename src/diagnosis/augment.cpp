@@ -59,12 +59,14 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   Eigen::VectorXd yy(m * ny), dd(m * ny);
   Eigen::MatrixXd Jw(m * ny, J.cols());
   Eigen::VectorXd rw(m * ny);
+  std::vector<double> oe_delta;
   for (Eigen::Index j = 0; j < ny; ++j) {
     double delta = 0;
     for (Eigen::Index i = 0; i < m; ++i) delta = std::max(delta, std::abs(Ra(i * stride, j)));
     // 1.5 x the largest residual at the estimate: the true parameters see the noise itself, whose
     // largest value is about as large as the estimate's; the margin keeps them inside.
     delta = 1.5 * delta + 1e-300;
+    oe_delta.push_back(delta);
     // Rows in units of the bound and columns in units of each parameter's scale keep the LP
     // well conditioned (position residuals of 1e-6 m next to forces of 1e2 N otherwise).
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -106,23 +108,31 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const double s2 = rw.squaredNorm() / dof;
   Eigen::MatrixXd cov = (Jw.transpose() * Jw).completeOrthogonalDecomposition().pseudoInverse() * s2;
   for (std::size_t k = 0; k < chosen_candidates.size(); ++k) {
-    for (const auto& pn : chosen_candidates[k].parameters) {
+    for (std::size_t q = 0; q < chosen_candidates[k].parameters.size(); ++q) {
+      const std::string& pn = chosen_candidates[k].parameters[q];
       EffectParameter ep;
       ep.name = pn;
+      ep.role = chosen_candidates[k].roles[q];
+      ep.oe_delta = oe_delta;
       for (std::size_t i = 0; i < fr.size(); ++i) {
         if (current.parameters[static_cast<std::size_t>(fr[i])].name != pn) continue;
         const auto ii = static_cast<Eigen::Index>(i);
         ep.estimate = r.parameters[fr[i]];
         // The parameter's own bounds (min/max) hold too, so the interval is cut to them.
         const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
-        const Interval theta = Interval(ep.estimate) + pr.box[ii] * o.scale[i];  // outward rounded
-        ep.lo = ep.oe_lo = std::max(have_pui ? theta.lower() : -inf, mp.min);
-        ep.hi = ep.oe_hi = std::min(have_pui ? theta.upper() : inf, mp.max);
+        double oe_lo = -inf, oe_hi = inf;
+        if (have_pui) {
+          const Interval theta = Interval(ep.estimate) + pr.box[ii] * o.scale[i];  // outward rounded
+          oe_lo = theta.lower(), oe_hi = theta.upper();
+        }
+        ep.lo = ep.oe_lo = std::max(oe_lo, mp.min);
+        ep.hi = ep.oe_hi = std::min(oe_hi, mp.max);
         const auto ee = ee_results.find(chosen_candidates[k].equation);
         if (ee != ee_results.end() && ee->second.built)
           for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
             if (ee->second.parameters[static_cast<std::size_t>(c)] == pn) {
               ep.has_ee = true;
+              ep.ee_delta = ee->second.delta;
               ep.ee_lo = std::max(ee->second.box[c].lower(), mp.min);
               ep.ee_hi = std::min(ee->second.box[c].upper(), mp.max);
               // Each set holds the truth under its own bound, so under both the truth lies in

@@ -1,74 +1,91 @@
-// Stage 3 of the diagnosis: every catalogue effect, wherever it can enter, as a competing
-// hypothesis calibrated with the free parameters; the acceptable ones added greedily (fewest
-// terms that explain the data).
+// Stage 3 of the diagnosis: every catalogue effect, wherever the model's structure lets it enter,
+// screened by least squares (screening.hpp); the best few refined by output error from several
+// starts; the ones that pass every documented rule (acceptance.hpp) compete, the sparsest
+// explanation wins; added greedily until the model is within the noise or nothing passes.
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "diagnosis/stages.hpp"
+#include "sets/diagnosis/screening.hpp"
 
 namespace sets::diagnosis_stage {
 
 namespace {
 
 using Scales = std::vector<std::pair<std::string, double>>;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Trial {
   Candidate cand;
   ModelFile model;  // calibrated
-  double cost = 1e300, cost_val = 1e300;
-  ModelFile neutral_model;           // the calibrated model with the effect switched off
-  double cost_neutral = 1e300, cost_neutral_val = 1e300;
-  std::vector<double> fit, fit_val;
+  double cost = 1e300, cost_val = kNaN;
+  double cost_neutral = kNaN, cost_neutral_val = kNaN;
+  ModelFile neutral_model;  // the calibrated model with the effect switched off
   bool ok = false;
+  double screening_gain = 0;
+  std::vector<RuleCheck> rules;
+  bool accepted = false;
 };
 
-// Calibrates one hypothesis (with every free parameter), and evaluates it with its own term
-// switched off at the calibrated point.
-Trial run_trial(const Context& c, Candidate cand, const Scales& known_scales) {
-  const int substeps = c.options.screening_substeps;
-  Trial t;
-  t.cand = std::move(cand);
+double validation_cost(const Context& c, const ModelFile& m) {
+  if (!c.validation) return kNaN;
   try {
-    if (t.cand.restart)
-      for (auto& q : t.cand.model.parameters)
-        if (const auto* orig = c.model.parameter(q.name); orig && !q.fixed) q.value = orig->value;
-    Simulator s(t.cand.model, c.estimation, {substeps});
+    Simulator sv(m, *c.validation, {c.options.screening_substeps});
+    const auto r = evaluate(sv, sv.parameter_values());
+    return r.ok ? r.cost : 1e300;
+  } catch (const std::exception&) {
+    return 1e300;
+  }
+}
+
+// Output-error calibration of one hypothesis from each of its starts (the best kept), then its
+// cost with its own term switched off at the calibrated point.
+Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::VectorXd>& starts, const Scales& known) {
+  Trial t;
+  t.cand = cand;
+  try {
+    Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
     const std::vector<int> fr = s.free_parameters();
-    auto ks = known_scales;
-    for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) ks.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
+    auto ks = known;
+    for (std::size_t k = 0; k < cand.parameters.size(); ++k) ks.emplace_back(cand.parameters[k], cand.scales[k]);
     CalibrationOptions o;
-    o.scale = scales_for(t.cand.model, fr, ks);
-    o.max_evaluations = 40 * static_cast<int>(fr.size() + 1);
-    const auto r = calibrate(s, s.parameter_values(), fr, o);
-    if (!r.ok) return t;
-    t.ok = true;
-    t.cost = r.cost;
-    t.fit = r.fit;
-    t.model = t.cand.model;
-    store_values(t.model, r.parameters);
-    if (c.validation) {
-      Simulator sv(t.model, *c.validation, {substeps});
-      const auto rv = evaluate(sv, r.parameters);
-      t.cost_val = rv.ok ? rv.cost : 1e300;
-      t.fit_val = rv.fit;
+    o.scale = scales_for(cand.model, fr, ks);
+    o.max_evaluations = 30 * static_cast<int>(fr.size() + 1);
+    std::vector<Eigen::VectorXd> from = starts;
+    if (from.empty()) from.push_back(s.parameter_values());
+    if (cand.restart) {  // from the file's values: the calibrated nominal may be far off
+      Eigen::VectorXd p = s.parameter_values();
+      for (std::size_t i = 0; i < cand.model.parameters.size(); ++i)
+        if (const auto* orig = c.model.parameter(cand.model.parameters[i].name); orig && !cand.model.parameters[i].fixed)
+          p[static_cast<Eigen::Index>(i)] = orig->value;
+      from.push_back(p);
     }
-    // The same parameters with the effect switched off: what the effect itself contributes.
-    if (!t.cand.parameters.empty()) {
-      t.neutral_model = t.model;
-      for (std::size_t k = 0; k < t.cand.parameters.size(); ++k)
-        if (!std::isnan(t.cand.neutral[k])) t.neutral_model.parameter(t.cand.parameters[k])->value = t.cand.neutral[k];
+    CalibrationResult best;
+    for (const auto& p : from) {
+      const auto r = calibrate(s, p, fr, o);
+      if (r.ok && (!best.ok || r.cost < best.cost)) best = r;
+    }
+    if (!best.ok) return t;
+    t.ok = true;
+    t.cost = best.cost;
+    t.model = cand.model;
+    store_values(t.model, best.parameters);
+    t.cost_val = validation_cost(c, t.model);
+    // Switched off: every new parameter at its neutral value (NaN: irrelevant once the others are).
+    t.neutral_model = t.model;
+    bool any = false;
+    for (std::size_t k = 0; k < cand.parameters.size(); ++k)
+      if (!std::isnan(cand.neutral[k])) t.neutral_model.parameter(cand.parameters[k])->value = cand.neutral[k], any = true;
+    if (any) {
       const auto rn = evaluate(s, values_of(t.neutral_model));
       t.cost_neutral = rn.ok ? rn.cost : 1e300;
-      if (c.validation && rn.ok) {
-        Simulator sv(t.neutral_model, *c.validation, {substeps});
-        const auto rv = evaluate(sv, values_of(t.neutral_model));
-        t.cost_neutral_val = rv.ok ? rv.cost : 1e300;
-      }
+      if (rn.ok) t.cost_neutral_val = validation_cost(c, t.neutral_model);
     }
   } catch (const std::exception&) {
     t.ok = false;  // a hypothesis that cannot be simulated loses
@@ -76,177 +93,195 @@ Trial run_trial(const Context& c, Candidate cand, const Scales& known_scales) {
   return t;
 }
 
-std::vector<Trial> run_trials(const Context& c, const std::vector<Candidate>& cands, const Scales& known_scales) {
-  std::vector<Trial> trials(cands.size());
+template <class Job>
+void parallel(int threads, std::size_t jobs, Job job) {
   std::atomic<std::size_t> next{0};
-  std::mutex mu;
   auto worker = [&] {
-    for (std::size_t i; (i = next++) < cands.size();) {
-      Trial t = run_trial(c, cands[i], known_scales);
-      std::lock_guard<std::mutex> lock(mu);
-      trials[i] = std::move(t);
-    }
+    for (std::size_t i; (i = next++) < jobs;) job(i);
   };
   std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, c.options.threads); ++k) pool.emplace_back(worker);
+  for (int k = 0; k < std::max(1, threads); ++k) pool.emplace_back(worker);
   for (auto& th : pool) th.join();
-  return trials;
 }
 
-// Time delay: ranked by a short calibration on the first fifth of the record (a delay shifts the
-// optimum of the other parameters, so an uncalibrated ranking prefers too short a delay); the
-// best two per actuator compete with the other hypotheses.
-std::vector<Candidate> keep_best_delays(const Context& c, std::vector<Candidate> cands, const Scales& known_scales) {
-  const Eigen::Index N = c.exact.samples();
-  Recording head = c.estimation;
-  const std::size_t rows = static_cast<std::size_t>(std::max<Eigen::Index>(std::min<Eigen::Index>(N, 200), N / 5));
-  for (auto& col : head.columns) col.resize(rows);
-  std::vector<Candidate> kept;
-  std::map<std::string, std::vector<std::pair<double, std::size_t>>> ranked;
-  for (std::size_t i = 0; i < cands.size(); ++i) {
-    if (cands[i].effect != "time_delay") continue;
-    if (cands[i].delay_samples >= static_cast<int>(rows) / 10) continue;
-    Simulator s(cands[i].model, head, {c.options.screening_substeps});
-    CalibrationOptions o;
-    const auto fr = s.free_parameters();
-    o.scale = scales_for(cands[i].model, fr, known_scales);
-    o.max_evaluations = 10 * static_cast<int>(fr.size() + 1);
-    const auto r = calibrate(s, s.parameter_values(), fr, o);
-    ranked[cands[i].equation].push_back({r.ok ? r.cost : 1e300, i});
-  }
-  for (auto& [a, list] : ranked) {
-    std::sort(list.begin(), list.end());
-    for (std::size_t k = 0; k < std::min<std::size_t>(2, list.size()); ++k) kept.push_back(cands[list[k].second]);
-  }
-  for (auto& cand : cands)
-    if (cand.effect != "time_delay") kept.push_back(std::move(cand));
-  return kept;
-}
-
-// The delay grid is coarse: try every whole number of samples between the chosen one's neighbours.
-void refine_delay(const Context& c, const ModelFile& current, const Scales& known_scales, Trial& t) {
+// The delay grid is coarse: every whole number of samples between the screened one's neighbours
+// is screened again by simulation (cheap), the best is refined.
+Candidate best_delay(const Context& c, const ModelFile& current, const Candidate& chosen, const std::vector<double>& bound) {
   static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
-  const Eigen::Index N = c.exact.samples();
-  const int n0 = t.cand.delay_samples;
+  const int n0 = chosen.delay_samples;
   const auto it = std::find(grid.begin(), grid.end(), n0);
   const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
-  const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 : *(it + 1) - 1;
-  for (int n = lo; n <= hi; ++n) {
-    if (n == n0 || n >= N / 10) continue;
-    Candidate cand = delay_candidate(current, t.cand.equation, n);
-    for (auto& q : cand.model.parameters) q.value = t.model.parameter(q.name)->value;
-    Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
-    CalibrationOptions o;
-    const auto fr = s.free_parameters();
-    o.scale = scales_for(cand.model, fr, known_scales);
-    o.max_evaluations = 10 * static_cast<int>(fr.size() + 1);
-    const auto r = calibrate(s, s.parameter_values(), fr, o);
-    if (r.ok && r.cost < t.cost) {
-      t.cand = cand;
-      t.model = cand.model;
-      store_values(t.model, r.parameters);
-      t.cost = r.cost;
-      t.fit = r.fit;
-      if (c.validation) {
-        Simulator sv(t.model, *c.validation, {c.options.screening_substeps});
-        const auto rv = evaluate(sv, r.parameters);
-        t.cost_val = rv.ok ? rv.cost : 1e300;
-      }
+  const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 + 8 : *(it + 1) - 1;
+  std::vector<Candidate> around;
+  for (int n = lo; n <= hi; ++n)
+    if (n < c.exact.samples() / 10) around.push_back(delay_candidate(current, chosen.equation, n));
+  if (around.size() < 2) return chosen;
+  ScreeningOptions so;
+  so.substeps = c.options.screening_substeps;
+  so.threads = c.options.threads;
+  so.noise_bound = bound;
+  so.equation_error = false;
+  const Screening s = screen_hypotheses(current, c.estimation, around, so);
+  return s.ranked.empty() ? chosen : s.ranked.front().candidate;
+}
+
+std::vector<std::string> excluded_by(const std::vector<std::string>& chosen) {
+  static const std::set<std::string> sign_laws = {"coulomb_friction", "stribeck_friction", "asymmetric_friction"};
+  std::vector<std::string> out = chosen;
+  for (const auto& e : chosen)
+    if (sign_laws.count(e)) out.insert(out.end(), sign_laws.begin(), sign_laws.end());  // one friction law
+  return out;
+}
+
+// The shortlist: the best `k` by score (one delay per actuator), those consistent with the noise
+// bound, and the best two by equation error.
+std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
+  std::vector<const ScreenedHypothesis*> out;
+  std::set<std::string> delay_seen;
+  auto take = [&](const ScreenedHypothesis& h) {
+    if (!std::isfinite(h.cost) || std::find(out.begin(), out.end(), &h) != out.end()) return false;
+    if (h.candidate.effect == "time_delay") {
+      if (delay_seen.count(h.candidate.equation)) return false;
+      delay_seen.insert(h.candidate.equation);
     }
-  }
+    out.push_back(&h);
+    return true;
+  };
+  int taken = 0;
+  for (const auto& h : s.ranked)
+    if (taken < k && take(h)) ++taken;
+  int extra = 0;
+  for (const auto& h : s.ranked)
+    if (extra < 2 && h.consistent && take(h)) ++extra;
+  std::vector<const ScreenedHypothesis*> by_ee;
+  for (const auto& h : s.ranked)
+    if (std::isfinite(h.ee_gain) && h.ee_gain > 0.1) by_ee.push_back(&h);
+  std::sort(by_ee.begin(), by_ee.end(), [](auto* a, auto* b) { return a->ee_gain > b->ee_gain; });
+  for (std::size_t i = 0; i < std::min<std::size_t>(2, by_ee.size()); ++i) take(*by_ee[i]);
+  return out;
 }
 
 }  // namespace
 
 HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
   const DiagnosisOptions& opt = c.options;
-  const Recording* val = c.validation;
-  const double floor_cost = noise.cost;
   HypothesisSearch h;
-  ModelFile& current = h.current;
-  current = d.nominal;
-  double cost_cur = cost_of(evaluate(c.fast, nominal.calibration.parameters).fit);
-  double cost_cur_val = 0;
-  if (val) {
-    Simulator fast_val(c.model, *val, SimulationOptions{opt.screening_substeps});
-    cost_cur_val = cost_of(evaluate(fast_val, nominal.calibration.parameters).fit);
-  }
+  h.current = d.nominal;
   std::vector<std::string> chosen;
-  d.nothing_missing = nominal.cost <= opt.noise_floor_factor * floor_cost;
-  for (int round = 0; round < opt.max_effects && !d.nothing_missing; ++round) {
-    if (cost_cur <= opt.noise_floor_factor * floor_cost) break;
-    Simulator cur_sim(current, c.estimation, {opt.screening_substeps});
-    const SimulationResult cur_res = cur_sim.simulate(values_of(current));
-    std::vector<std::string> exclude = chosen;
-    for (const auto& e : chosen) {  // one friction law at a time
-      if (e == "coulomb_friction") exclude.push_back("stribeck_friction");
-      if (e == "stribeck_friction") exclude.push_back("coulomb_friction");
-    }
-    std::vector<Candidate> cands =
-        keep_best_delays(c, generate_candidates(current, cur_res, c.estimation, exclude), h.known_scales);
+  const bool stop_at_noise = opt.noise_floor_factor > 0;
+  if (stop_at_noise && d.nominal_tests.within_noise()) {
+    d.nothing_missing = true;
+    return h;
+  }
+  AcceptanceRules rules;
+  rules.min_gain = opt.min_cost_reduction;
+  rules.min_own_term = opt.min_cost_reduction;
+  rules.min_validation_gain = opt.min_validation_reduction;
+  std::vector<double> bound;
+  for (double s : noise.sigma) bound.push_back(noise_bound_factor(c.exact.samples()) * s);
+  (void)nominal;
+  for (int round = 0; round < opt.max_effects; ++round) {
+    Simulator cur_sim(h.current, c.estimation, {opt.screening_substeps});
+    const SimulationResult cur_res = cur_sim.simulate(values_of(h.current));
+    const std::vector<Candidate> cands = generate_candidates(h.current, cur_res, c.estimation, excluded_by(chosen));
+    c.say("round " + std::to_string(round + 1) + ": screening " + std::to_string(cands.size()) + " hypotheses by least squares");
+    ScreeningOptions so;
+    so.substeps = opt.screening_substeps;
+    so.threads = opt.threads;
+    so.sparsity_tolerance = opt.sparsity_tolerance;
+    so.noise_bound = bound;
+    const Screening screening = screen_hypotheses(h.current, c.estimation, cands, so);
+    d.hypotheses_screened += static_cast<int>(cands.size());
+    const std::vector<const ScreenedHypothesis*> list = shortlist(screening, opt.refine);
+    std::string names;
+    for (const auto* s : list) names += (names.empty() ? "" : ", ") + s->candidate.effect + " (" + s->candidate.equation + ")";
+    c.say("  refining by output error: " + names);
     // The null hypothesis: the current model calibrated with the same budget. A hypothesis must
     // beat it, so that a better optimum of the old parameters is not credited to a new effect.
-    {
-      Candidate null;
-      null.model = current;
-      cands.insert(cands.begin(), null);
-    }
-    c.say("round " + std::to_string(round + 1) + ": calibrating " + std::to_string(cands.size()) + " competing hypotheses");
-    std::vector<Trial> trials = run_trials(c, cands, h.known_scales);
-    // Acceptance: removes enough of the misfit, more than noise could, and (with a validation
-    // record) also helps there.
-    if (trials.front().ok && trials.front().cost < cost_cur) {
+    std::vector<Trial> trials(list.size() + 1);
+    Candidate null;
+    null.model = h.current;
+    parallel(opt.threads, trials.size(), [&](std::size_t i) {
+      trials[i] = i == 0 ? refine(c, null, {values_of(h.current)}, h.known_scales)
+                         : refine(c, list[i - 1]->candidate, list[i - 1]->starts, h.known_scales);
+      if (i > 0) trials[i].screening_gain = list[i - 1]->gain;
+    });
+    d.hypotheses_refined += static_cast<int>(list.size());
+    double cost_cur = 1e300, cost_cur_val = kNaN;
+    if (trials.front().ok) {
       cost_cur = trials.front().cost;
       cost_cur_val = trials.front().cost_val;
-      current = trials.front().model;
+      h.current = trials.front().model;
     }
     // A hypothesis whose calibration merely found a better optimum of the old parameters (its own
     // term switched off fits as well) shows a better baseline, not an effect.
     for (std::size_t i = 1; i < trials.size(); ++i) {
       const auto& t = trials[i];
-      if (t.ok && t.cost_neutral < cost_cur && (!val || t.cost_neutral_val < 1e299)) {
+      if (t.ok && std::isfinite(t.cost_neutral) && t.cost_neutral < cost_cur && (!c.validation || t.cost_neutral_val < 1e299)) {
         cost_cur = t.cost_neutral;
-        cost_cur_val = val ? t.cost_neutral_val : 0;
-        // Keep the current structure (the switched-off term is dropped), take the better values.
-        for (auto& q : current.parameters)
+        cost_cur_val = t.cost_neutral_val;
+        for (auto& q : h.current.parameters)
           if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
       }
     }
+    auto evidence = [&](const Trial& t) {
+      HypothesisEvidence e;
+      e.cost_null = cost_cur;
+      e.cost = t.cost;
+      e.cost_neutral = t.cost_neutral;
+      e.cost_null_validation = cost_cur_val;
+      e.cost_validation = t.cost_val;
+      e.noise_cost = noise.cost;
+      return e;
+    };
     std::vector<std::size_t> ok;
     for (std::size_t i = 1; i < trials.size(); ++i) {
-      const auto& t = trials[i];
-      if (!t.ok) continue;
-      const double gain = (cost_cur - t.cost) / cost_cur;
-      if (gain < opt.min_cost_reduction || cost_cur - t.cost < floor_cost) continue;
-      if (t.cost_neutral < 1e299 && (t.cost_neutral - t.cost) / t.cost_neutral < opt.min_cost_reduction) continue;
-      if (val && (cost_cur_val - t.cost_val) / cost_cur_val < 0.5 * opt.min_cost_reduction) continue;
-      ok.push_back(i);
+      if (!trials[i].ok) continue;
+      trials[i].rules = check_rules(evidence(trials[i]), rules);
+      trials[i].accepted = passes(trials[i].rules);
+      if (trials[i].accepted) ok.push_back(i);
     }
     if (ok.empty()) break;
-    auto judged = [&](std::size_t i) { return val ? trials[i].cost_val : trials[i].cost; };
-    std::size_t best = ok.front();
-    for (std::size_t i : ok)
-      if (judged(i) < judged(best)) best = i;
-    std::size_t pick = best;
-    for (std::size_t i : ok)
-      if (judged(i) <= opt.sparsity_tolerance * judged(best) &&
-          (trials[i].cand.parameters.size() < trials[pick].cand.parameters.size() ||
-           (trials[i].cand.parameters.size() == trials[pick].cand.parameters.size() && judged(i) < judged(pick))))
-        pick = i;
-    if (trials[pick].cand.effect == "time_delay") refine_delay(c, current, h.known_scales, trials[pick]);
+    // The sparsest explanation: misfit (validation when there is one) x tolerance^parameters.
+    auto score = [&](std::size_t i) {
+      const double judged = c.validation ? trials[i].cost_val : trials[i].cost;
+      const int p = static_cast<int>(trials[i].cand.parameters.size()) + (trials[i].cand.effect == "time_delay" ? 1 : 0);
+      return judged * std::pow(opt.sparsity_tolerance, p);
+    };
+    std::size_t pick = ok.front(), best = ok.front();
+    for (std::size_t i : ok) {
+      if (score(i) < score(pick)) pick = i;
+      if ((c.validation ? trials[i].cost_val : trials[i].cost) < (c.validation ? trials[best].cost_val : trials[best].cost)) best = i;
+    }
+    if (trials[pick].cand.effect == "time_delay") {
+      // Refine the number of samples; the refined delay must pass the rules too.
+      const Candidate better = best_delay(c, h.current, trials[pick].cand, bound);
+      if (better.delay_samples != trials[pick].cand.delay_samples) {
+        Trial t = refine(c, better, {values_of(better.model)}, h.known_scales);
+        if (t.ok) {
+          t.rules = check_rules(evidence(t), rules);
+          t.screening_gain = trials[pick].screening_gain;
+          if (passes(t.rules) && (c.validation ? t.cost_val <= trials[pick].cost_val : t.cost <= trials[pick].cost)) trials[pick] = t;
+        }
+      }
+    }
     const Trial& t = trials[pick];
     DiagnosedEffect e;
     e.name = t.cand.effect;
     e.equation = t.cand.equation;
     e.term = t.cand.term;
-    e.cost_reduction_estimation = (cost_cur - t.cost) / cost_cur;
-    e.cost_reduction_validation = val ? (cost_cur_val - t.cost_val) / cost_cur_val : 0;
+    e.delay_samples = t.cand.delay_samples;
+    if (const auto* pe = find_effect(e.name)) e.placement = pe->placement;
+    e.rules = t.rules;
+    e.screening_gain = t.screening_gain;
+    e.cost_reduction_estimation = t.rules[0].value;
+    e.cost_reduction_validation = t.rules[3].applies ? t.rules[3].value : 0;
     std::ostringstream ev;
     ev << "adding " << t.cand.term << " to " << t.cand.equation << " removes " << fixed1(100 * e.cost_reduction_estimation)
        << " % of the squared misfit on the estimation record";
-    if (val) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
-    ev << " (best of " << trials.size() - 1 << " competing hypotheses";
-    if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the simpler explanation";
+    if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
+    ev << " (screened " << cands.size() << " hypotheses, refined " << list.size() << ", " << ok.size() << " passed every rule";
+    if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the sparser explanation";
     ev << ")";
     if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
     e.evidence = ev.str();
@@ -255,9 +290,13 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     d.effects.push_back(e);
     chosen.push_back(t.cand.effect);
     h.chosen.push_back(t.cand);
-    current = t.model;
-    cost_cur = t.cost;
-    cost_cur_val = t.cost_val;
+    h.current = t.model;
+    // Within the noise now? Then nothing more is missing.
+    if (stop_at_noise && round + 1 < opt.max_effects) {
+      Simulator s(h.current, c.estimation, {opt.screening_substeps});
+      const SimulationResult r = s.simulate(values_of(h.current));
+      if (test_residual(s, values_of(h.current), r, noise.sigma).within_noise()) break;
+    }
   }
   return h;
 }

@@ -71,6 +71,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
 struct NoiseFloor {
   std::vector<double> sigma;  // per output
   double cost = 0;            // the misfit (cost_of units) the noise alone gives
+  std::string note;           // how sigma was estimated
 };
 NoiseFloor noise_floor(const Eigen::MatrixXd& measured);
 
