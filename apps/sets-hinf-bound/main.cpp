@@ -2,8 +2,6 @@
 // ||W (Ghat - G0)||_inf <= b, from time-domain data (Hakvoort & Van den Hof).
 // Built-in example (no --data): Monte Carlo over simulated data; with --data: one real data set.
 
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -17,9 +15,13 @@
 #include <random>
 #include <sstream>
 
+#include "common/cli.hpp"
+#include "common/gnuplot.hpp"
+#include "common/json_output.hpp"
 #include "sets/core/exit_code.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
+#include "sets/data/recording.hpp"
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 
 namespace fs = std::filesystem;
@@ -67,150 +69,66 @@ Eigen::VectorXd basis_coefficients(const sets::RationalModel& G, const sets::Ort
   return g;
 }
 
-// ---------------------------------------------------------------- CSV
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> cols;
-};
-Csv read_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open");
-  Csv c;
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (c.header.empty()) {
-      bool numeric = true;
-      for (auto& s : f) {
-        char* end = nullptr;
-        std::strtod(s.c_str(), &end);
-        if (end == s.c_str()) numeric = false;
-      }
-      c.header = numeric ? std::vector<std::string>() : f;
-      c.cols.resize(f.size());
-      if (numeric) {
-        for (size_t i = 0; i < f.size(); ++i) c.header.push_back(std::to_string(i + 1));
-      } else
-        continue;
-    }
-    if (f.size() != c.cols.size())
-      throw InputError(path + ":" + std::to_string(lineno) + ": " + std::to_string(f.size()) + " fields, expected " +
-                       std::to_string(c.cols.size()));
-    for (size_t i = 0; i < f.size(); ++i) {
-      char* end = nullptr;
-      const double v = std::strtod(f[i].c_str(), &end);
-      if (end == f[i].c_str() || !std::isfinite(v))
-        throw InputError(path + ":" + std::to_string(lineno) + ": column " + std::to_string(i + 1) + " (" +
-                         c.header[i] + "): '" + f[i] + "' is not a finite number");
-      c.cols[i].push_back(v);
-    }
-  }
-  if (c.cols.empty() || c.cols[0].empty()) throw InputError(path + ": no data rows");
-  return c;
-}
-Eigen::VectorXd column(const Csv& c, const std::string& name, const std::string& path) {
-  for (size_t i = 0; i < c.header.size(); ++i)
-    if (c.header[i] == name || std::to_string(i + 1) == name)
-      return Eigen::Map<const Eigen::VectorXd>(c.cols[i].data(), c.cols[i].size());
-  throw InputError(path + ": no column '" + name + "' (by name or 1-based number)");
-}
-
-// Writes through a temporary name in the same folder, then renames: complete or not at all.
-// (The PNG needs this form: gnuplot writes the temporary file itself.)
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& writer) {
-  const fs::path p(path);
-  const fs::path tmp = p.parent_path() / (p.filename().string() + ".tmp" + std::to_string(::getpid()));
-  try {
-    writer(tmp.string());
-    fs::rename(tmp, p);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
-  }
+// A column given by name or 1-based number.
+Eigen::VectorXd column(const sets::Recording& r, const std::string& spec, const std::string& flag) {
+  return r.matrix({spec}, flag).col(0);
 }
 
 void plot(const std::string& png, const sets::HinfBoundResult& R, const sets::RationalModel* G0) {
-  const auto& S = R.set;
-  const auto dir = fs::temp_directory_path() / ("sets-hinf-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  {
-    std::ofstream reg(dir / "regions.dat"), fr(dir / "freq.dat"), dense(dir / "dense.dat");
-    for (size_t j = 0; j < S.regions.size(); ++j) {
-      for (auto z : S.regions[j].boundary(48)) reg << z.real() << ' ' << z.imag() << '\n';
-      reg << "\n";
-    }
-    for (Eigen::Index j = 0; j < S.frequencies.size(); ++j) {
-      const double w = S.frequencies[j];
-      fr << w << ' ' << S.regions[j].centre.real() << ' ' << S.regions[j].centre.imag() << ' '
-         << std::abs(S.regions[j].centre) << ' ' << R.delta[j] << ' ' << std::abs(R.weight.inverse(w)) << ' '
-         << std::abs(R.weight.inverse(w)) * R.bound.b_grid << '\n';
-    }
-    for (int i = 0; i < 2000; ++i) {
-      const double w = pi * i / 1999;
-      const cd g = R.nominal.model(w);
-      dense << w << ' ' << g.real() << ' ' << g.imag() << ' ' << std::abs(g);
-      if (G0) {
-        const cd t = (*G0)(w);
-        dense << ' ' << t.real() << ' ' << t.imag() << ' ' << std::abs(t);
-      }
-      dense << '\n';
-    }
-  }
-  const std::string d = dir.string();
-  std::ofstream gp(dir / "plot.gp");
-  gp << "set terminal pngcairo size 1400,600 noenhanced\n"
-     << "set output '" << png << "'\n"
-     << "set multiplot layout 1,2\n"
-     << "set title 'Uncertainty regions P(w_j) in the complex plane'\nset xlabel 'Re'\nset ylabel 'Im'\nset grid\n"
-     << "plot '" << d << "/regions.dat' w l lc rgb '#9999cc' t 'regions P(w_j)', '" << d
-     << "/freq.dat' u 2:3 w p pt 7 ps 0.4 lc rgb 'black' t 'central estimate', '" << d
-     << "/dense.dat' u 2:3 w l lw 2 lc rgb 'red' t 'nominal model'"
-     << (G0 ? ", '" + d + "/dense.dat' u 5:6 w l dt 2 lc rgb 'dark-green' t 'true G0'" : std::string()) << "\n"
-     << "set title 'Magnitudes against frequency'\nset xlabel 'frequency (rad/sample)'\nset ylabel 'magnitude'\n"
-     << "set logscale y\nset xrange [0:pi]\n"
-     << "plot '" << d << "/freq.dat' u 1:4 w l lc rgb 'black' t '|central estimate|', '" << d
-     << "/dense.dat' u 1:4 w l lw 2 lc rgb 'red' t '|nominal|', '" << d
-     << "/freq.dat' u 1:5 w l lc rgb 'blue' t 'delta(w) = max |G - Ghat|', '" << d
-     << "/freq.dat' u 1:6 w l lc rgb 'orange' t '|W^-1|', '" << d
-     << "/freq.dat' u 1:7 w l dt 3 lc rgb 'orange' t 'b_grid |W^-1|'"
-     << (G0 ? ", '" + d + "/dense.dat' u 1:7 w l dt 2 lc rgb 'dark-green' t '|G0|'" : std::string()) << "\n"
-     << "unset multiplot\n";
-  gp.close();
-  write_atomically(png, [&](const std::string& tmp) {
-    std::string script;
+  using sets::app::gnuplot_quote;
+  sets::app::render_png(png, "set terminal pngcairo size 1400,600 noenhanced", [&](const fs::path& dir, const std::string&) {
+    const auto& S = R.set;
     {
-      std::ifstream in(dir / "plot.gp");
-      std::stringstream ss;
-      ss << in.rdbuf();
-      script = ss.str();
+      std::ofstream reg(dir / "regions.dat"), fr(dir / "freq.dat"), dense(dir / "dense.dat");
+      for (size_t j = 0; j < S.regions.size(); ++j) {
+        for (auto z : S.regions[j].boundary(48)) reg << z.real() << ' ' << z.imag() << '\n';
+        reg << "\n";
+      }
+      for (Eigen::Index j = 0; j < S.frequencies.size(); ++j) {
+        const double w = S.frequencies[j];
+        fr << w << ' ' << S.regions[j].centre.real() << ' ' << S.regions[j].centre.imag() << ' '
+           << std::abs(S.regions[j].centre) << ' ' << R.delta[j] << ' ' << std::abs(R.weight.inverse(w)) << ' '
+           << std::abs(R.weight.inverse(w)) * R.bound.b_grid << '\n';
+      }
+      for (int i = 0; i < 2000; ++i) {
+        const double w = pi * i / 1999;
+        const cd g = R.nominal.model(w);
+        dense << w << ' ' << g.real() << ' ' << g.imag() << ' ' << std::abs(g);
+        if (G0) {
+          const cd t = (*G0)(w);
+          dense << ' ' << t.real() << ' ' << t.imag() << ' ' << std::abs(t);
+        }
+        dense << '\n';
+      }
     }
-    const auto pos = script.find("set output '" + png + "'");
-    script.replace(pos, png.size() + 13, "set output '" + tmp + "'");
-    std::ofstream(dir / "plot2.gp") << script;
-    const std::string cmd = "gnuplot '" + (dir / "plot2.gp").string() + "' 2>" + (dir / "gp.err").string();
-    if (std::system(cmd.c_str()) != 0 || !fs::exists(tmp) || fs::file_size(tmp) == 0) {
-      std::ifstream err(dir / "gp.err");
-      std::stringstream ss;
-      ss << err.rdbuf();
-      throw sets::NumericalError("gnuplot failed: " + ss.str());
-    }
+    const std::string regions = gnuplot_quote((dir / "regions.dat").string()),
+                      freq = gnuplot_quote((dir / "freq.dat").string()), dense = gnuplot_quote((dir / "dense.dat").string());
+    std::ostringstream gp;
+    gp << "set multiplot layout 1,2\n"
+       << "set title 'Uncertainty regions P(w_j) in the complex plane'\nset xlabel 'Re'\nset ylabel 'Im'\nset grid\n"
+       << "plot " << regions << " w l lc rgb '#9999cc' t 'regions P(w_j)', " << freq
+       << " u 2:3 w p pt 7 ps 0.4 lc rgb 'black' t 'central estimate', " << dense
+       << " u 2:3 w l lw 2 lc rgb 'red' t 'nominal model'"
+       << (G0 ? ", " + dense + " u 5:6 w l dt 2 lc rgb 'dark-green' t 'true G0'" : std::string()) << "\n"
+       << "set title 'Magnitudes against frequency'\nset xlabel 'frequency (rad/sample)'\nset ylabel 'magnitude'\n"
+       << "set logscale y\nset xrange [0:pi]\n"
+       << "plot " << freq << " u 1:4 w l lc rgb 'black' t '|central estimate|', " << dense
+       << " u 1:4 w l lw 2 lc rgb 'red' t '|nominal|', " << freq
+       << " u 1:5 w l lc rgb 'blue' t 'delta(w) = max |G - Ghat|', " << freq
+       << " u 1:6 w l lc rgb 'orange' t '|W^-1|', " << freq
+       << " u 1:7 w l dt 3 lc rgb 'orange' t 'b_grid |W^-1|'"
+       << (G0 ? ", " + dense + " u 1:7 w l dt 2 lc rgb 'dark-green' t '|G0|'" : std::string()) << "\n"
+       << "unset multiplot\n";
+    return gp.str();
   });
-  fs::remove_all(dir);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sets-hinf-bound: nominal model + weighted H-infinity error bound from time-domain data "
-               "(Hakvoort & Van den Hof)"};
+  sets::app::Cli cli("sets-hinf-bound", "sets-hinf-bound: nominal model + weighted H-infinity error bound from time-domain data "
+               "(Hakvoort & Van den Hof)");
+  CLI::App& app = cli.app();
   int N = 2000, runs = 200, order = 40, nominal_order = 2, grid_points = 150, polygon = 16, weight_degree = 12;
   double alpha = 0.95, pole = 0.93, pole_angle = 0.66, rho = 0.88, M = -1, u_bar = 1, M_ic = -1, rho_ic = -1;
   double v_bar = -1, noise_std = 0.02, w_min = 0, w_max = pi;
@@ -242,18 +160,14 @@ int main(int argc, char** argv) {
   app.add_option("--v-bar", v_bar, "prior: |v(t)| <= v_bar (bounded noise)");
   app.add_option("--noise-std", noise_std, "built-in: std (stochastic) or bound (bounded) of the white noise before the 1/(1-0.7q^-1) filter");
   app.add_option("--seed", seed, "random seed");
-  app.add_option("--json", json_path, "write the results as JSON");
-  app.add_option("--plot", plot_path, "write a PNG plot (gnuplot)");
+  cli.add_output_file("--json", json_path, "write the results as JSON");
+  cli.add_output_file("--plot", plot_path, "write a PNG plot (gnuplot)");
   app.add_option("--data", data_path, "CSV file with real data (header row optional)");
   app.add_option("--u", ucol, "input column (name or 1-based number)");
   app.add_option("--y", ycol, "output column");
   app.add_option("--r", rcol, "reference column: instrumental variables for closed-loop data");
   app.add_flag("--quiet", quiet, "do not print the per-frequency table");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;  // usage errors exit 1 (docs/contributing.md)
-  }
+  if (const auto code = cli.parse(argc, argv)) return *code;
 
   try {
     const bool builtin = data_path.empty();
@@ -320,10 +234,10 @@ int main(int argc, char** argv) {
     Eigen::VectorXd u, y, r;
     if (!builtin) {
       if (ucol.empty() || ycol.empty()) throw InputError("--data needs --u and --y");
-      const Csv c = read_csv(data_path);
-      u = column(c, ucol, data_path);
-      y = column(c, ycol, data_path);
-      if (!rcol.empty()) r = column(c, rcol, data_path);
+      const sets::Recording c = sets::read_csv(data_path);
+      u = column(c, ucol, "--u");
+      y = column(c, ycol, "--y");
+      if (!rcol.empty()) r = column(c, rcol, "--r");
       runs = 1;
       std::cout << "  data: " << data_path << ", " << u.size() << " samples\n";
     } else {
@@ -375,7 +289,7 @@ int main(int argc, char** argv) {
     }
     if (first.set.empty) {
       std::cout << "\nThe data falsify the priors (bounded noise): " << first.set.falsification << "\n";
-      return 2;
+      return int(sets::exit_falsified);
     }
     const auto& R = first;
     if (!quiet) {
@@ -441,7 +355,7 @@ int main(int argc, char** argv) {
     }
 
     if (!json_path.empty()) {
-      nlohmann::json j;
+      sets::app::Json j;
       j["runs"] = runs;
       j["alpha"] = alpha;
       j["noise"] = noise_name;
@@ -481,7 +395,7 @@ int main(int argc, char** argv) {
       j["mean_unweighted_b_grid"] = mean(ubgrids);
       j["mean_unweighted_b"] = mean(ubs);
       j["b_grid_runs"] = bgrids;
-      sets::write_file_atomically(json_path, j.dump(1) + "\n");
+      sets::app::write_json(json_path, j, 1);
     }
     if (!plot_path.empty()) plot(plot_path, R, builtin ? &G0 : nullptr);
     return 0;

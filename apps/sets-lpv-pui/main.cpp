@@ -9,7 +9,6 @@
 //
 // Exit codes: 0 success, 1 bad input or usage, 2 the data falsify the model, 3 numerical failure.
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <atomic>
@@ -24,9 +23,12 @@
 #include <sstream>
 #include <thread>
 
+#include "common/cli.hpp"
+#include "common/json_output.hpp"
 #include "sets/core/exit_code.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
+#include "sets/data/recording.hpp"
 #include "sets/methods/lpv_pui/lpv_model.hpp"
 
 namespace {
@@ -239,7 +241,7 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
     if (!errors[k].empty()) {
       std::cerr << "sets-lpv-pui: run " << k % runs << " of table " << kTables[settings[k / runs].table].name
                 << " failed: " << errors[k] << '\n';
-      return 3;
+      return int(sets::exit_numerical);
     }
 
   const LpvModelStructure model = LpvModelStructure::cerone_regruto_example();
@@ -350,72 +352,6 @@ int run_tables(const std::vector<int>& tables, int runs, std::uint64_t seed, dou
 
 // ---------------------------------------------------------------- real data
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;  // rows[i] is file line i + 2
-};
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream is(line);
-  while (std::getline(is, cell, ',')) {
-    const auto a = cell.find_first_not_of(" \t\r\"");
-    const auto b = cell.find_last_not_of(" \t\r\"");
-    out.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-  }
-  if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
-
-Csv read_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw sets::InputError("cannot open data file '" + path + "'");
-  Csv csv;
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    auto cells = split_csv_line(line);
-    if (csv.header.empty()) {
-      csv.header = cells;
-      continue;
-    }
-    if (cells.size() != csv.header.size())
-      throw sets::InputError(path + ":" + std::to_string(lineno) + ": " + std::to_string(cells.size()) +
-                             " columns, the header has " + std::to_string(csv.header.size()));
-    csv.rows.push_back(std::move(cells));
-  }
-  if (csv.header.empty()) throw sets::InputError(path + ": empty file (expected a header line and data)");
-  return csv;
-}
-
-int column_index(const Csv& csv, const std::string& col, const std::string& path, const char* flag) {
-  for (std::size_t i = 0; i < csv.header.size(); ++i)
-    if (csv.header[i] == col) return static_cast<int>(i);
-  if (!col.empty() && col.find_first_not_of("0123456789") == std::string::npos) {
-    const int k = std::stoi(col);
-    if (k >= 1 && k <= static_cast<int>(csv.header.size())) return k - 1;
-  }
-  throw sets::InputError(path + ": no column '" + col + "' (given by " + flag + "); columns are named in the header line or numbered from 1");
-}
-
-Eigen::VectorXd numeric_column(const Csv& csv, int c, const std::string& path) {
-  Eigen::VectorXd v(static_cast<Eigen::Index>(csv.rows.size()));
-  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
-    const std::string& cell = csv.rows[i][static_cast<std::size_t>(c)];
-    const std::string where = path + ":" + std::to_string(i + 2) + ", column " + std::to_string(c + 1) + " ('" +
-                              csv.header[static_cast<std::size_t>(c)] + "')";
-    char* end = nullptr;
-    const double x = std::strtod(cell.c_str(), &end);
-    if (cell.empty() || end != cell.c_str() + cell.size()) throw sets::InputError(where + ": '" + cell + "' is not a number");
-    if (!std::isfinite(x)) throw sets::InputError(where + ": '" + cell + "' is not a finite number");
-    v[static_cast<Eigen::Index>(i)] = x;
-  }
-  return v;
-}
-
 LpvModelStructure structure_from_flags(const std::string& model_file, const std::vector<std::string>& a_flags,
                                        const std::vector<std::string>& b_flags, int alpha) {
   if (!model_file.empty()) {
@@ -461,13 +397,11 @@ LpvModelStructure structure_from_flags(const std::string& model_file, const std:
 int run_data(const std::string& path, const std::string& ucol, const std::string& ycol,
              const std::vector<std::string>& rcols, double delta_eta, double delta_eps, const LpvModelStructure& model,
              const sets::PuiOptions& options, const std::string& json_path) {
-  const Csv csv = read_csv(path);
+  const sets::Recording csv = sets::read_csv(path);
   LpvMeasurements d;
-  d.u = numeric_column(csv, column_index(csv, ucol, path, "--u"), path);
-  d.y = numeric_column(csv, column_index(csv, ycol, path, "--y"), path);
-  d.r.resize(d.u.size(), static_cast<Eigen::Index>(rcols.size()));
-  for (std::size_t s = 0; s < rcols.size(); ++s)
-    d.r.col(static_cast<Eigen::Index>(s)) = numeric_column(csv, column_index(csv, rcols[s], path, "--r"), path);
+  d.u = csv.matrix({ucol}, "--u").col(0);
+  d.y = csv.matrix({ycol}, "--y").col(0);
+  d.r = csv.matrix(rcols, "--r");
   d.delta_eta = Eigen::VectorXd::Constant(1, delta_eta);
   d.delta_eps = Eigen::MatrixXd::Constant(1, static_cast<Eigen::Index>(rcols.size()), delta_eps);
 
@@ -486,7 +420,7 @@ int run_data(const std::string& path, const std::string& ucol, const std::string
       std::cerr << "\n    sample " << res.falsifying_times[i] << " (line " << res.falsifying_times[i] + 2
                 << "): " << res.pui.falsification.violation[i];
     std::cerr << "\n  Check these samples, or widen --delta-eta / --delta-eps, or change the model structure.\n";
-    return 2;
+    return int(sets::exit_falsified);
   }
   std::cout << std::setprecision(6);
   std::cout << "  " << std::left << std::setw(22) << "parameter" << std::right << std::setw(14) << "PUI lower"
@@ -519,8 +453,9 @@ int run_data(const std::string& path, const std::string& ucol, const std::string
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sets-lpv-pui: guaranteed PUIs of LPV models with bounded output and scheduling noise "
-               "(Cerone & Regruto). Without --data: reproduces the paper's Tables I-IV."};
+  sets::app::Cli cli("sets-lpv-pui", "sets-lpv-pui: guaranteed PUIs of LPV models with bounded output and scheduling noise "
+               "(Cerone & Regruto). Without --data: reproduces the paper's Tables I-IV.");
+  CLI::App& app = cli.app();
   std::string table = "all", orthants = "remark2", json_path, data_path, ucol, ycol, model_file;
   int runs = 20;
   std::uint64_t seed = 1;
@@ -534,7 +469,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--orthants", orthants, "remark2 (least-squares orthant, extended at zero bounds) or all")
       ->check(CLI::IsMember({"remark2", "all"}));
-  app.add_option("--json", json_path, "write the results as JSON");
+  cli.add_output_file("--json", json_path, "write the results as JSON");
   std::string regressor_noise = "both";
   app.add_option("--regressor-noise", regressor_noise,
                  "errors that widen the regressor boxes: both (the paper's method, guaranteed); scheduling, "
@@ -555,11 +490,7 @@ int main(int argc, char** argv) {
   app.add_option("--model", model_file, "model structure JSON {\"alpha\":1,\"a\":[[..]],\"b\":[[..]]}");
   app.add_option("--a", a_flags, "basis of a_i, comma-separated (repeat for i = 1..na), e.g. --a lambda --a 1,lambda^2");
   app.add_option("--b", b_flags, "basis of b_j (repeat for j = 0..nb; \"\" for none)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
-  }
+  if (const auto code = cli.parse(argc, argv)) return *code;
 
   g_regressor_noise = regressor_noise == "scheduling" ? RegressorNoise::scheduling
                       : regressor_noise == "output"   ? RegressorNoise::output

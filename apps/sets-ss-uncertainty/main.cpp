@@ -4,7 +4,6 @@
 // Without --data it runs the Monte Carlo study of Section V and prints Table I and the failure
 // rates; with --data it identifies a model from a CSV file and prints both uncertainty domains.
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <atomic>
@@ -19,10 +18,12 @@
 #include <random>
 #include <thread>
 
-#include "csv_columns.hpp"
+#include "common/cli.hpp"
+#include "common/json_output.hpp"
 #include "sets/core/exit_code.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
+#include "sets/data/recording.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 
 namespace {
@@ -292,19 +293,16 @@ int monte_carlo(const Settings& st) {
 // ------------------------------------------------------------------ real data
 
 int real_data(const Settings& st) {
-  const auto table = read_csv(st.data);
-  const auto ui = parse_columns(st.inputs, table, "--inputs");
-  const auto yi = parse_columns(st.outputs, table, "--outputs");
+  const sets::Recording table = sets::read_csv(st.data);
+  const Eigen::MatrixXd u = table.matrix(sets::app::split_list(st.inputs), "--inputs");
+  const Eigen::MatrixXd y = table.matrix(sets::app::split_list(st.outputs), "--outputs");
   if (st.order < 1) throw sets::InputError("--order: give the model order n >= 1 with --data");
-  Eigen::MatrixXd u(table.data.rows(), ui.size()), y(table.data.rows(), yi.size());
-  for (std::size_t k = 0; k < ui.size(); ++k) u.col(k) = table.data.col(ui[k]);
-  for (std::size_t k = 0; k < yi.size(); ++k) y.col(k) = table.data.col(yi[k]);
   sets::SsUncertaintyOptions o;
   o.identification.order = st.order;
   o.identification.past = st.past;
   o.identification.estimate_d = st.estimate_d;
   o.identification.selection = parse_selection(st.selection);
-  if (!st.rows.empty()) o.identification.rows = parse_rows(st.rows, static_cast<int>(yi.size()));
+  if (!st.rows.empty()) o.identification.rows = parse_rows(st.rows, static_cast<int>(y.cols()));
   o.level = st.level;
   const auto t0 = std::chrono::steady_clock::now();
   const auto result = sets::ss_uncertainty(u, y, o);
@@ -322,7 +320,7 @@ int real_data(const Settings& st) {
             << sets::to_string(st.level.norm) << "), J_min = " << dom.j_min << ", J_D = " << dom.j_d << "\n\n";
   if (p.empty) {
     std::cout << "The feasible parameter set with |eps| <= l is empty: " << p.falsification.message() << '\n';
-    return 2;
+    return int(sets::exit_falsified);
   }
   std::cout << "  param        estimate     ellipsoid box (not guaranteed)       FPS PUI (holds only if |eps| <= l at the truth)\n";
   json jp = json::array();
@@ -353,7 +351,8 @@ int real_data(const Settings& st) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sets-ss-uncertainty: propagator subspace LS with ellipsoidal uncertainty domains (Farah et al.)"};
+  sets::app::Cli cli("sets-ss-uncertainty", "sets-ss-uncertainty: propagator subspace LS with ellipsoidal uncertainty domains (Farah et al.)");
+  CLI::App& app = cli.app();
   Settings st;
   st.threads = std::max(1u, std::thread::hardware_concurrency());
   std::string residuals = "all", norm = "entrywise";
@@ -377,16 +376,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--fps-pui-runs", st.fps_pui_runs, "compute FPS PUIs by LP in the first K runs (-1: all)")
       ->check(CLI::Range(-1, 100000000));
-  app.add_option("--json", st.json_path, "write results as JSON");
+  cli.add_output_file("--json", st.json_path, "write results as JSON");
   app.add_option("--data", st.data, "CSV file with measured inputs and outputs (instead of the simulation)");
   app.add_option("--inputs", st.inputs, "input columns of --data (1-based numbers or header names)");
   app.add_option("--outputs", st.outputs, "output columns of --data");
   app.add_option("--order", st.order, "model order n with --data");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
-  }
+  if (const auto code = cli.parse(argc, argv)) return *code;
   st.level.residuals = residuals == "outputs" ? sets::ResidualSelection::outputs
                        : residuals == "states" ? sets::ResidualSelection::states
                                                : sets::ResidualSelection::all;

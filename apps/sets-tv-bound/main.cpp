@@ -4,7 +4,6 @@
 // trajectories and their bounds with the l-inf LP (8) and the sparse-derivative MILP (14).
 // Prints Tables I-III of the paper (true and estimated bounds), RMS tracking errors and times.
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -21,6 +20,8 @@
 #include <vector>
 
 #include "sets/examples/crane.hpp"
+#include "common/cli.hpp"
+#include "common/json_output.hpp"
 #include "sets/core/exit_code.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
@@ -167,8 +168,9 @@ std::string fmt(const Eigen::VectorXd& v, int prec = 2) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sets-tv-bound: bounds of time-varying parameter perturbations of the overhead crane "
-               "(Salehpour & Johansson), l-inf LP and sparse-derivative MILP"};
+  sets::app::Cli cli("sets-tv-bound", "sets-tv-bound: bounds of time-varying parameter perturbations of the overhead crane "
+               "(Salehpour & Johansson), l-inf LP and sparse-derivative MILP");
+  CLI::App& app = cli.app();
   std::string method = "both", table = "all", json_path;
   double time_limit = 60, seconds = 6, mu_rel = 0.001, box_rel = 4, gap = 1e-4;
   unsigned seed = 1;
@@ -190,7 +192,7 @@ int main(int argc, char** argv) {
                  "does not depend on the machine's load, so runs are reproducible")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "noise seed");
-  app.add_option("--json", json_path, "write the results as JSON to this file");
+  cli.add_output_file("--json", json_path, "write the results as JSON to this file");
   app.add_option("--horizon", seconds, "simulated time [s] (N = horizon / 0.05)")->check(CLI::Range(1.0, 60.0));
   app.add_option("--mu", mu_rel, "MILP threshold mu as a fraction of the nominal (b0, l0, k0)")
       ->check(CLI::PositiveNumber);
@@ -223,15 +225,11 @@ int main(int argc, char** argv) {
                  "0 = the paper's single expansion around pi = 0); the MILP uses the last linearisation")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--verbose", verbose, "GLPK branch-and-cut log");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;  // usage errors exit 1 (docs/contributing.md)
-  }
+  if (const auto code = cli.parse(argc, argv)) return *code;
   const bool do_linf = method != "milp", do_milp = method != "linf";
   if (relinearise > 0 && plant == "biaffine") {
     std::cerr << "sets-tv-bound: --relinearise needs --plant exact (the biaffine plant is already affine in pi)\n";
-    return 1;
+    return int(sets::exit_bad_input);
   }
   const int N = static_cast<int>(std::lround(seconds / kStep));
 

@@ -39,10 +39,62 @@ void Recording::add(const std::string& name, std::vector<double> values) {
   columns.push_back(std::move(values));
 }
 
+std::size_t Recording::column_index(const std::string& name_or_number, const std::string& what) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name_or_number) return i;
+  if (!name_or_number.empty() && name_or_number.find_first_not_of("0123456789") == std::string::npos &&
+      name_or_number.size() < 10) {
+    const std::size_t k = std::stoul(name_or_number);
+    if (k >= 1 && k <= names.size()) return k - 1;
+  }
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  throw InputError(source + ": no column \"" + name_or_number + "\"" + (what.empty() ? "" : " (given by " + what + ")") +
+                   "; the file has: " + list + " (or give a column number from 1 to " + std::to_string(names.size()) +
+                   ")");
+}
+
+Eigen::MatrixXd Recording::matrix(const std::vector<std::string>& names_or_numbers, const std::string& what) const {
+  Eigen::MatrixXd m(rows(), static_cast<Eigen::Index>(names_or_numbers.size()));
+  for (std::size_t k = 0; k < names_or_numbers.size(); ++k) {
+    const auto& c = columns[column_index(names_or_numbers[k], what)];
+    m.col(static_cast<Eigen::Index>(k)) = Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()));
+  }
+  return m;
+}
+
 namespace {
 
 // A CSV field without surrounding blanks, carriage returns or quotes.
 std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t\r\"")); }
+
+}  // namespace
+
+namespace {
+
+bool skipped(const std::string& line) {
+  const std::string t = trim(line);
+  return t.empty() || t[0] == '#';
+}
+
+// The whole of `cell` as a double ("+" allowed), or false.
+bool parse_number(const std::string& cell, double& v) {
+  const char* b = cell.data() + (!cell.empty() && cell[0] == '+');
+  const char* e = cell.data() + cell.size();
+  const auto res = std::from_chars(b, e, v);
+  return b != e && res.ec == std::errc() && res.ptr == e;
+}
+
+std::vector<std::string> split_fields(const std::string& line, char separator) {
+  std::vector<std::string> out;
+  std::size_t pos = 0;
+  for (;;) {
+    const auto next = line.find(separator, pos);
+    out.push_back(trim(line.substr(pos, next == std::string::npos ? std::string::npos : next - pos)));
+    if (next == std::string::npos) return out;
+    pos = next + 1;
+  }
+}
 
 }  // namespace
 
@@ -54,54 +106,60 @@ Recording parse_csv(const std::string& text, const std::string& source) {
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
-    if (!trim(line).empty()) break;
+    if (!skipped(line)) break;
   }
-  if (trim(line).empty()) throw InputError(source + ": empty file (a header line is expected)");
-  {
-    std::stringstream hs(line);
-    std::string cell;
-    while (std::getline(hs, cell, ',')) {
-      cell = trim(cell);
+  if (skipped(line)) throw InputError(source + ": empty file (a header line is expected)");
+  const char separator = line.find(',') != std::string::npos   ? ','
+                         : line.find(';') != std::string::npos ? ';'
+                         : line.find('\t') != std::string::npos ? '\t'
+                                                                : ',';
+  const std::vector<std::string> first = split_fields(line, separator);
+  bool header = false;
+  for (const auto& cell : first) {
+    double v = 0;
+    const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
+    header = header || !(nan_text || parse_number(cell, v));
+  }
+  if (header) {
+    for (const auto& cell : first) {
       if (cell.empty())
         throw InputError(source + ": line " + std::to_string(line_no) + ", column " +
                          std::to_string(r.names.size() + 1) + ": empty column name in the header");
       r.names.push_back(cell);
     }
+  } else {
+    for (std::size_t c = 0; c < first.size(); ++c) r.names.push_back(std::to_string(c + 1));
   }
   r.columns.resize(r.names.size());
   const std::size_t nc = r.names.size();
   int row = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
+  bool pending = !header;  // a header-less file: the first line is data
+  while (pending || std::getline(in, line)) {
+    if (!pending) ++line_no;
+    pending = false;
+    if (skipped(line)) continue;
     ++row;
-    std::size_t col = 0, pos = 0;
-    while (true) {
-      const auto comma = line.find(',', pos);
-      const std::string cell = trim(line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-      if (col >= nc)
-        throw InputError(source + ": line " + std::to_string(line_no) + ": more than " + std::to_string(nc) +
-                         " values (the header has " + std::to_string(nc) + " columns)");
+    const std::vector<std::string> cells = split_fields(line, separator);
+    if (cells.size() > nc)
+      throw InputError(source + ": line " + std::to_string(line_no) + ": more than " + std::to_string(nc) +
+                       " values (the header has " + std::to_string(nc) + " columns)");
+    if (cells.size() < nc)
+      throw InputError(source + ": line " + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                       " values, the header has " + std::to_string(nc) + " columns");
+    for (std::size_t col = 0; col < nc; ++col) {
+      const std::string& cell = cells[col];
       double v = 0;
-      const char* b = cell.data();
-      const char* e = cell.data() + cell.size();
-      auto res = std::from_chars(b, e, v);
       const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
-      if (nan_text) v = std::nan("");
-      else if (cell.empty() || res.ec != std::errc() || res.ptr != e)
+      if (nan_text)
+        v = std::nan("");
+      else if (!parse_number(cell, v))
         throw InputError(source + ": line " + std::to_string(line_no) + ", column " + std::to_string(col + 1) +
                          " (\"" + r.names[col] + "\"): not a number: \"" + cell + "\"");
       if (!std::isfinite(v))
         throw InputError(source + ": data row " + std::to_string(row) + " (line " + std::to_string(line_no) +
                          "), column \"" + r.names[col] + "\": NaN or infinite value");
       r.columns[col].push_back(v);
-      ++col;
-      if (comma == std::string::npos) break;
-      pos = comma + 1;
     }
-    if (col != nc)
-      throw InputError(source + ": line " + std::to_string(line_no) + ": " + std::to_string(col) +
-                       " values, the header has " + std::to_string(nc) + " columns");
   }
   if (row == 0) throw InputError(source + ": no data rows after the header");
   return r;

@@ -111,12 +111,16 @@ void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& 
 BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
   if (theta.size() != p_) throw InputError("FeasibleParameterSet::contains: wrong dimension");
   BoolInterval result = BoolInterval::yes;
+  // Pure interval work: one rounding-mode switch for the whole loop (it was one per operation,
+  // about 90 % of the time of this function).
+  using I = UnprotectedInterval;
+  RoundingScope upward;
   for (Eigen::Index t = 0; t < n_; ++t) {
     // The range of phi^T theta over the regressor box is [lo_true, hi_true]; L and U enclose them.
-    Interval L(0.0), U(0.0);
+    I L(0.0), U(0.0);
     for (int j = 0; j < p_; ++j) {
-      const Interval a = Phi_(t, j).lower() * Interval(theta[j]);
-      const Interval b = Phi_(t, j).upper() * Interval(theta[j]);
+      const I a = Phi_(t, j).lower() * I(theta[j]);
+      const I b = Phi_(t, j).upper() * I(theta[j]);
       const bool pos = theta[j] >= 0;
       L += pos ? a : b;
       U += pos ? b : a;

@@ -362,3 +362,54 @@ TEST(FeasibleParameterSet, AddStripBuildsTheSameSetAsFromData) {
   }
   EXPECT_EQ(grown.contains(d.theta), bulk.contains(d.theta));
 }
+
+namespace {
+
+// Exact membership of theta in the set of one sample, in rationals: the range of phi^T theta
+// over the regressor box meets the output interval.
+bool exact_sample_member(const sets::IntervalVector& Phi, const sets::Interval& Y, const Eigen::VectorXd& theta) {
+  CGAL::Gmpq lo(0), hi(0);
+  for (Eigen::Index j = 0; j < theta.size(); ++j) {
+    const CGAL::Gmpq a = CGAL::Gmpq(Phi[j].lower()) * CGAL::Gmpq(theta[j]);
+    const CGAL::Gmpq b = CGAL::Gmpq(Phi[j].upper()) * CGAL::Gmpq(theta[j]);
+    lo += a < b ? a : b;
+    hi += a < b ? b : a;
+  }
+  return lo <= CGAL::Gmpq(Y.upper()) && hi >= CGAL::Gmpq(Y.lower());
+}
+
+}  // namespace
+
+// contains() (one rounding-mode switch for the whole loop) never contradicts exact rational
+// arithmetic, also for points placed exactly on a strip's boundary, where rounding decides.
+RC_GTEST_PROP(FeasibleParameterSet, ContainsAgreesWithExactArithmetic, ()) {
+  const int p = *rc::gen::inRange(1, 6);
+  std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+  std::uniform_real_distribution<double> U(-1, 1);
+  const bool eiv = *rc::gen::arbitrary<bool>();
+  const Eigen::VectorXd theta = Eigen::VectorXd::NullaryExpr(p, [&] { return 3 * U(rng) / 7; });
+  const int N = 6;  // >= p
+  IntervalMatrix Phi(N, p);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    double centre = 0;
+    for (int j = 0; j < p; ++j) {
+      const double c = U(rng) / 3, r = eiv ? std::abs(U(rng)) / 10 : 0.0;
+      Phi(t, j) = sets::Interval(c - r, c + r);  // c - r, c + r are doubles: the box is what it says
+      centre += c * theta[j];                    // round-to-nearest: a point near the boundary
+    }
+    // Output interval ending (almost) exactly where the sample's range starts or ends.
+    const double w = *rc::gen::arbitrary<bool>() ? 0.0 : std::abs(U(rng));
+    switch (*rc::gen::inRange(0, 3)) {
+      case 0: Y[t] = sets::Interval(centre - 2 * w - 1, centre - w); break;
+      case 1: Y[t] = sets::Interval(centre + w, centre + 2 * w + 1); break;
+      default: Y[t] = sets::Interval(centre - w, centre + w); break;
+    }
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  bool member = true;
+  for (int t = 0; t < N; ++t) member = member && exact_sample_member(Phi.row(t).transpose(), Y[t], theta);
+  const sets::BoolInterval v = fps.contains(theta);
+  if (member) RC_ASSERT(v != sets::BoolInterval::no);
+  if (!member) RC_ASSERT(v != sets::BoolInterval::yes);
+}

@@ -36,7 +36,8 @@ struct Reference {
 // Is the reference inside [lo, hi]? Exact comparison for rationals; for MPFR the 256-bit
 // value differs from the true one by far less than a double ulp, and an enclosure end that is
 // exactly equal to a transcendental value cannot happen.
-bool inside(const Reference& r, const Interval& x) {
+template <class I>
+bool inside(const Reference& r, const I& x) {
   if (r.exact) return CGAL::Gmpq(x.lower()) <= r.q && r.q <= CGAL::Gmpq(x.upper());
   return mpfr_cmp_d(r.m, x.lower()) >= 0 && mpfr_cmp_d(r.m, x.upper()) <= 0;
 }
@@ -72,14 +73,16 @@ rc::Gen<std::shared_ptr<Node>> gen_tree(int depth) {
 }
 
 // Evaluates both ways; returns false if the expression is undefined (division by an interval
-// containing 0, sqrt of a negative, overflow), in which case the sample is discarded.
-bool evaluate(const Node& n, Interval& x, Reference& r) {
+// containing 0, sqrt of a negative, overflow), in which case the sample is discarded. I is
+// Interval, or UnprotectedInterval inside a RoundingScope.
+template <class I>
+bool evaluate(const Node& n, I& x, Reference& r) {
   if (n.op == Op::leaf) {
-    x = Interval(n.value);
+    x = I(n.value);
     r.q = CGAL::Gmpq(n.value);
     return true;
   }
-  Interval xa, xb;
+  I xa, xb;
   Reference ra, rb;
   if (!evaluate(*n.a, xa, ra)) return false;
   const bool binary = n.op == Op::add || n.op == Op::sub || n.op == Op::mul || n.op == Op::div;
@@ -123,7 +126,7 @@ bool evaluate(const Node& n, Interval& x, Reference& r) {
       mpfr_sin(r.m, ra.m, MPFR_RNDN);
       break;
     case Op::pow:
-      x = sets::pow(xa, n.power);
+      x = boost::numeric::pow(xa, n.power);
       if (ra.exact) {
         r.exact = true;
         r.q = CGAL::Gmpq(1);
@@ -146,6 +149,41 @@ RC_GTEST_PROP(Interval, RandomExpressionTreesEncloseTheExactValue, ()) {
   Reference r;
   RC_PRE(evaluate(*tree, x, r));
   RC_ASSERT(inside(r, x));
+}
+
+// The same trees in one RoundingScope with UnprotectedInterval (no mode switch per operation).
+RC_GTEST_PROP(Interval, UnprotectedIntervalsInARoundingScopeEncloseTheExactValue, ()) {
+  const auto tree = *gen_tree(4);
+  sets::UnprotectedInterval x;
+  Reference r;
+  bool defined = false;
+  {
+    sets::RoundingScope upward;
+    defined = evaluate(*tree, x, r);
+  }
+  RC_PRE(defined);
+  RC_ASSERT(inside(r, x));
+  RC_ASSERT(std::fegetround() == FE_TONEAREST);
+}
+
+TEST(Interval, OneThirdIsEnclosedInARoundingScope) {
+  volatile double vone = 1.0, vthree = 3.0;
+  const double one = vone, three = vthree;
+  Interval x;
+  {
+    sets::RoundingScope upward;
+    const sets::UnprotectedInterval q = sets::UnprotectedInterval(one) / sets::UnprotectedInterval(three);
+    EXPECT_EQ(std::fegetround(), FE_UPWARD);
+    x = q;  // to the protected type
+    // A protected operation inside the scope restores the scope's mode, not round-to-nearest.
+    x = x + Interval(one);
+    EXPECT_EQ(std::fegetround(), FE_UPWARD);
+    x = x - Interval(one);
+  }
+  EXPECT_EQ(std::fegetround(), FE_TONEAREST);
+  const CGAL::Gmpq third(1, 3);
+  EXPECT_LT(CGAL::Gmpq(x.lower()), third);
+  EXPECT_GT(CGAL::Gmpq(x.upper()), third);
 }
 
 TEST(Interval, RoundingModeIsRestoredAfterUse) {
@@ -241,6 +279,15 @@ TEST(Interval, RoundingControlSetsBothSseAndX87AndRestoresThem) {
   }
   EXPECT_EQ(sse_rounding(), 0u) << "SSE rounding mode not restored";
   EXPECT_EQ(x87_rounding(), 0u) << "x87 rounding mode not restored";
+  {
+    sets::RoundingScope outer;
+    EXPECT_EQ(sse_rounding(), 2u);
+    EXPECT_EQ(x87_rounding(), 2u);
+    { sets::RoundingScope inner; }  // nested: restores the outer scope's mode
+    EXPECT_EQ(sse_rounding(), 2u);
+  }
+  EXPECT_EQ(sse_rounding(), 0u) << "RoundingScope did not restore SSE";
+  EXPECT_EQ(x87_rounding(), 0u) << "RoundingScope did not restore x87";
 }
 #endif
 

@@ -1,7 +1,7 @@
 #pragma once
 // The apps' exit codes (docs/contributing.md) in one place, so every app maps an exception that
 // ends it the same way: 0 success, 1 bad input or usage, 2 the data falsify the model, 3 a
-// numerical failure.
+// numerical failure. No app returns another code (a signal ends it with the signal's status).
 
 #include <exception>
 
@@ -15,6 +15,8 @@ int exit_code_for(const std::exception& e) noexcept;
 
 /// Prints "<app>: error: <what>" (or "<app>: numerical failure: ...", "<app>: falsified: ...")
 /// to stderr and returns exit_code_for(e). Use it in the one top-level catch of an app's main.
+/// Bytes of the message that a terminal would interpret (control characters, invalid UTF-8, e.g.
+/// from a binary file quoted in the message) are printed as \xNN.
 int report_failure(const char* app, const std::exception& e) noexcept;
 
 }  // namespace sets

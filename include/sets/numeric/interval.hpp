@@ -82,6 +82,31 @@ using Policies = bi::policies<Rounding, bi::checking_base<double>>;
 /// A closed interval [lo, hi] of reals, with every operation rounded outward.
 using Interval = boost::numeric::interval<double, detail::Policies>;
 
+/// Interval arithmetic for a block of work with ONE rounding-mode switch instead of one per
+/// operation. Every `Interval` operation saves the FPU mode, sets it upward and restores it
+/// (fegetround + 2 fesetround): for short operations that is most of the cost (perf in
+/// docs/performance.md). Usage:
+///
+///     RoundingScope upward;                 // FPU rounds upward until the end of the block
+///     UnprotectedInterval s(0.0);
+///     for (...) s += UnprotectedInterval(a[i]) * x[i];
+///     Interval result = s;                  // back to the protected type (no switch)
+///
+/// Rules: UnprotectedInterval operations are enclosures only while a RoundingScope is alive on
+/// this thread (they assume upward rounding); keep the block to interval work, since plain
+/// double arithmetic, Eigen, libm and GLPK inside it round upward too. Protected `Interval`
+/// operations inside the block stay correct (they save and restore the mode themselves).
+class RoundingScope {
+ public:
+  RoundingScope() = default;
+  RoundingScope(const RoundingScope&) = delete;
+  RoundingScope& operator=(const RoundingScope&) = delete;
+
+ private:
+  Interval::traits_type::rounding mode_;  // saves the mode and sets upward; restores it at the end
+};
+using UnprotectedInterval = boost::numeric::interval_lib::unprotect<Interval>::type;
+
 /// The smallest interval that contains the decimal or real number written in `text`.
 /// ("0.1" is not a double; a guaranteed computation must start from an enclosure of it.)
 Interval interval_from_string(const std::string& text);
