@@ -27,6 +27,7 @@ struct Trial {
   double cost = 1e300, cost_val = kNaN;
   double cost_neutral = kNaN, cost_neutral_val = kNaN;
   ModelFile neutral_model;  // the calibrated model with the effect switched off
+  std::vector<double> part_neutral;  // two effects at once: the cost with each one switched off
   bool ok = false;
   double screening_gain = 0;
   std::vector<RuleCheck> rules;
@@ -78,14 +79,30 @@ Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::V
     store_values(t.model, best.parameters);
     t.cost_val = validation_cost(c, t.model);
     // Switched off: every new parameter at its neutral value (NaN: irrelevant once the others are).
-    t.neutral_model = t.model;
-    bool any = false;
-    for (std::size_t k = 0; k < cand.parameters.size(); ++k)
-      if (!std::isnan(cand.neutral[k])) t.neutral_model.parameter(cand.parameters[k])->value = cand.neutral[k], any = true;
-    if (any) {
-      const auto rn = evaluate(s, values_of(t.neutral_model));
-      t.cost_neutral = rn.ok ? rn.cost : 1e300;
-      if (rn.ok) t.cost_neutral_val = validation_cost(c, t.neutral_model);
+    auto switched_off = [&](const Candidate& part) {
+      ModelFile m = t.model;
+      bool any = false;
+      for (std::size_t k = 0; k < part.parameters.size(); ++k)
+        if (!std::isnan(part.neutral[k])) m.parameter(part.parameters[k])->value = part.neutral[k], any = true;
+      return std::make_pair(m, any);
+    };
+    if (cand.parts.empty()) {
+      const auto [m, any] = switched_off(cand);
+      if (any) {
+        t.neutral_model = m;
+        const auto rn = evaluate(s, values_of(m));
+        t.cost_neutral = rn.ok ? rn.cost : 1e300;
+        if (rn.ok) t.cost_neutral_val = validation_cost(c, m);
+      }
+    } else {
+      // Two at once: each must matter on its own; the rule judges the weaker one.
+      for (const auto& part : cand.parts) {
+        const auto [m, any] = switched_off(part);
+        const auto rn = evaluate(s, values_of(m));
+        t.part_neutral.push_back(!any ? kNaN : rn.ok ? rn.cost : 1e300);
+      }
+      for (double v : t.part_neutral)
+        if (std::isfinite(v) && !(v >= t.cost_neutral)) t.cost_neutral = v;
     }
   } catch (const std::exception&) {
     t.ok = false;  // a hypothesis that cannot be simulated loses
@@ -217,7 +234,8 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     // term switched off fits as well) shows a better baseline, not an effect.
     for (std::size_t i = 1; i < trials.size(); ++i) {
       const auto& t = trials[i];
-      if (t.ok && std::isfinite(t.cost_neutral) && t.cost_neutral < cost_cur && (!c.validation || t.cost_neutral_val < 1e299)) {
+      if (t.ok && t.cand.parts.empty() && std::isfinite(t.cost_neutral) && t.cost_neutral < cost_cur &&
+          (!c.validation || t.cost_neutral_val < 1e299)) {
         cost_cur = t.cost_neutral;
         cost_cur_val = t.cost_neutral_val;
         for (auto& q : h.current.parameters)
@@ -245,7 +263,9 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     // The sparsest explanation: misfit (validation when there is one) x tolerance^parameters.
     auto score = [&](std::size_t i) {
       const double judged = c.validation ? trials[i].cost_val : trials[i].cost;
-      const int p = static_cast<int>(trials[i].cand.parameters.size()) + (trials[i].cand.effect == "time_delay" ? 1 : 0);
+      int p = static_cast<int>(trials[i].cand.parameters.size());
+      for (const auto& part : trials[i].cand.parts.empty() ? std::vector<Candidate>{trials[i].cand} : trials[i].cand.parts)
+        p += part.effect == "time_delay" ? 1 : 0;
       return judged * std::pow(opt.sparsity_tolerance, p);
     };
     std::size_t pick = ok.front(), best = ok.front();
@@ -266,30 +286,49 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
       }
     }
     const Trial& t = trials[pick];
-    DiagnosedEffect e;
-    e.name = t.cand.effect;
-    e.equation = t.cand.equation;
-    e.term = t.cand.term;
-    e.delay_samples = t.cand.delay_samples;
-    if (const auto* pe = find_effect(e.name)) e.placement = pe->placement;
-    e.rules = t.rules;
-    e.screening_gain = t.screening_gain;
-    e.cost_reduction_estimation = t.rules[0].value;
-    e.cost_reduction_validation = t.rules[3].applies ? t.rules[3].value : 0;
-    std::ostringstream ev;
-    ev << "adding " << t.cand.term << " to " << t.cand.equation << " removes " << fixed1(100 * e.cost_reduction_estimation)
-       << " % of the squared misfit on the estimation record";
-    if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
-    ev << " (screened " << cands.size() << " hypotheses, refined " << list.size() << ", " << ok.size() << " passed every rule";
-    if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the sparser explanation";
-    ev << ")";
-    if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
-    e.evidence = ev.str();
-    c.say("  found " + e.name + " in " + e.equation);
-    for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) h.known_scales.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
-    d.effects.push_back(e);
-    chosen.push_back(t.cand.effect);
-    h.chosen.push_back(t.cand);
+    // One effect, or two at once (each reported with its own share of the misfit).
+    const std::vector<Candidate> parts = t.cand.parts.empty() ? std::vector<Candidate>{t.cand} : t.cand.parts;
+    std::vector<std::size_t> order(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k) order[k] = k;
+    auto own_share = [&](std::size_t k) {
+      const double off = t.part_neutral.empty() ? t.cost_neutral : t.part_neutral[k];
+      return std::isfinite(off) && off > 0 ? (off - t.cost) / off : 0.0;
+    };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return own_share(a) > own_share(b); });
+    for (std::size_t k : order) {
+      const Candidate& part = parts[k];
+      DiagnosedEffect e;
+      e.name = part.effect;
+      e.equation = part.equation;
+      e.term = part.term;
+      e.delay_samples = part.delay_samples;
+      if (const auto* pe = find_effect(e.name)) e.placement = pe->placement;
+      e.rules = t.rules;
+      for (auto& r : e.rules)
+        if (r.name == "own_term" && !t.part_neutral.empty()) {
+          r.value = own_share(k);
+          r.applies = std::isfinite(t.part_neutral[k]);
+          r.passed = !r.applies || r.value >= r.threshold;
+        }
+      e.screening_gain = t.screening_gain;
+      e.cost_reduction_estimation = t.rules[0].value;
+      e.cost_reduction_validation = t.rules[3].applies ? t.rules[3].value : 0;
+      std::ostringstream ev;
+      ev << "adding " << part.term << " to " << part.equation;
+      if (parts.size() > 1) ev << " (together with " << parts[1 - k].effect << " in " << parts[1 - k].equation << ")";
+      ev << " removes " << fixed1(100 * e.cost_reduction_estimation) << " % of the squared misfit on the estimation record";
+      if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
+      ev << " (screened " << screening.ranked.size() << " hypotheses, refined " << list.size() << ", " << ok.size() << " passed every rule";
+      if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the sparser explanation";
+      ev << ")";
+      if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
+      e.evidence = ev.str();
+      c.say("  found " + e.name + " in " + e.equation);
+      for (std::size_t q = 0; q < part.parameters.size(); ++q) h.known_scales.emplace_back(part.parameters[q], part.scales[q]);
+      d.effects.push_back(e);
+      chosen.push_back(part.effect);
+      h.chosen.push_back(part);
+    }
     h.current = t.model;
     // Within the noise now? Then nothing more is missing.
     if (stop_at_noise && round + 1 < opt.max_effects) {

@@ -305,15 +305,8 @@ void sqrt_candidates(const Context& k, const std::string& x) {
     k.out.push_back(std::move(b.c));
     replaced = true;
   }
-  if (!replaced) {  // no product to replace: an additional outflow
-    const std::string text = *k.model.derivative(x);
-    const double F = positive(inertia_of(k.model, text) * rms(rate(xx, k.Ts)), 1.0);
-    Builder b(k.model, "sqrt_outflow", x);
-    const std::string as = b.add("a_sqrt", 0, F / std::sqrt(xm), true, 0, 0);
-    b.c.term = as + "*sqrt(max(" + x + ", 0))";
-    *b.c.model.derivative(x) = subtract_force(text, b.c.term);
-    k.out.push_back(std::move(b.c));
-  }
+  (void)replaced;  // no product a*x to replace: no square-root law here (a balance such as
+                   // (T - Ta)/R is not an outflow of a level)
 }
 
 // The state cannot pass a limit: the derivative f is cut where it would push beyond it.
@@ -420,6 +413,28 @@ Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
   return c;
 }
 
+Candidate combine_candidates(const Candidate& first, const Candidate& second) {
+  Candidate c = second;
+  c.effect = first.effect + "+" + second.effect;
+  c.equation = first.equation + "," + second.equation;
+  c.term = first.term + "; " + second.term;
+  auto prepend = [](auto& to, const auto& from) { to.insert(to.begin(), from.begin(), from.end()); };
+  prepend(c.parameters, first.parameters);
+  prepend(c.roles, first.roles);
+  prepend(c.scales, first.scales);
+  prepend(c.neutral, first.neutral);
+  prepend(c.linear, first.linear);
+  prepend(c.fixed_roles, first.fixed_roles);
+  c.grid.clear();
+  c.delay_samples = std::max(first.delay_samples, second.delay_samples);
+  c.restart = first.restart || second.restart;
+  Candidate a = first, b = second;
+  a.model = ModelFile();
+  b.model = ModelFile();
+  c.parts = {a, b};
+  return c;
+}
+
 ModelStructure analyse_structure(const ModelFile& model) {
   ModelStructure s;
   std::set<std::string> positions, pair_velocities;
@@ -481,13 +496,19 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
   const Context k{model, nominal, measured, st, Ts, exclude, out};
   std::set<std::string> positions;
   for (const auto& [q, v] : st.mechanical) positions.insert(q);
-  for (const auto& v : st.velocities) friction_candidates(k, v);
+  std::vector<std::string> velocities = st.velocities;
+  for (const auto& x : st.other_states)  // a momentum balance (...)/M of a state that changes sign
+    if (std::find(velocities.begin(), velocities.end(), x) == velocities.end() &&
+        subtract_force(*model.derivative(x), "X").find(" - (X)") == std::string::npos && changes_sign(nominal.series(x)))
+      velocities.push_back(x);
+  for (const auto& v : velocities) friction_candidates(k, v);
   for (const auto& [q, v] : st.mechanical) {
     additive_candidates(k, v, q);
     bouc_wen_candidate(k, q, v);
   }
   for (const auto& x : st.other_states) {
-    additive_candidates(k, x, changes_sign(nominal.series(x)) ? x : "");
+    const bool velocity = std::find(velocities.begin(), velocities.end(), x) != velocities.end();
+    additive_candidates(k, x, !velocity && changes_sign(nominal.series(x)) ? x : "");
     sqrt_candidates(k, x);
     limit_candidates(k, x);
   }

@@ -175,6 +175,21 @@ ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Cand
   }
   std::sort(done.begin(), done.end(), [](const Row& x, const Row& y) { return x.cost < y.cost; });
   h.cost = done.front().cost;
+  {
+    const Row& b = done.front();
+    const auto q0 = static_cast<Eigen::Index>(cur_cols.size()), qn = static_cast<Eigen::Index>(c.parameters.size());
+    h.columns = b.A.rightCols(qn);
+    h.shift = b.d;
+    h.lower.resize(qn);
+    h.upper.resize(qn);
+    for (Eigen::Index k = 0; k < qn; ++k) {
+      const auto& mp = c.model.parameters[static_cast<std::size_t>(new_index[static_cast<std::size_t>(k)])];
+      const double at = c.linear[static_cast<std::size_t>(k)] ? 0.0 : b.start[new_index[static_cast<std::size_t>(k)]];
+      h.lower[k] = mp.min - at;
+      h.upper[k] = mp.max - at;
+    }
+    (void)q0;
+  }
   for (std::size_t r = 0; r < std::min<std::size_t>(2, done.size()); ++r) {
     h.starts.push_back(done[r].start);
     if (r == 0) h.starts.push_back(done[r].stepped);
@@ -207,6 +222,84 @@ ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Cand
     }
   }
   return h;
+}
+
+bool compatible(const Candidate& a, const Candidate& b) {
+  static const std::vector<std::string> sign_laws = {"coulomb_friction", "stribeck_friction", "asymmetric_friction",
+                                                     "viscous_friction", "quadratic_drag"};
+  static const std::vector<std::string> sensors = {"output_saturation", "hysteresis", "absolute_value_sensor"};
+  auto in = [](const std::vector<std::string>& v, const std::string& e) { return std::find(v.begin(), v.end(), e) != v.end(); };
+  if (a.effect == b.effect) return false;
+  if (in(sign_laws, a.effect) && in(sign_laws, b.effect) && a.equation == b.equation) return false;
+  if (in(sensors, a.effect) && in(sensors, b.effect) && a.equation == b.equation) return false;
+  return a.parts.empty() && b.parts.empty();
+}
+
+// Pairs of the best single hypotheses: the least squares with both sets of columns and both
+// shifts (first order: the effects add), then the combined model built on the first's.
+std::vector<ScreenedHypothesis> screen_pairs(const Around& a, const Eigen::VectorXd& R, const Recording& data,
+                                             const std::vector<ScreenedHypothesis>& singles, const ScreeningOptions& o,
+                                             int& sims) {
+  std::vector<const ScreenedHypothesis*> top;
+  for (const auto& h : singles) {
+    if (static_cast<int>(top.size()) >= o.pairs) break;
+    if (!std::isfinite(h.cost) || h.columns.rows() != R.size() || h.starts.empty()) continue;
+    bool seen = false;  // one delay per actuator
+    for (const auto* t : top) seen = seen || (t->candidate.effect == h.candidate.effect && t->candidate.equation == h.candidate.equation);
+    if (!seen) top.push_back(&h);
+  }
+  std::vector<ScreenedHypothesis> out;
+  const Eigen::Index q0 = a.J.cols();
+  for (std::size_t i = 0; i < top.size(); ++i)
+    for (std::size_t j = i + 1; j < top.size(); ++j) {
+      const ScreenedHypothesis &x = *top[i], &y = *top[j];
+      if (!compatible(x.candidate, y.candidate)) continue;
+      const Eigen::Index qx = x.columns.cols(), qy = y.columns.cols();
+      Eigen::MatrixXd A(R.size(), q0 + qx + qy);
+      A << a.J, x.columns, y.columns;
+      Eigen::VectorXd lo(A.cols()), hi(A.cols());
+      lo << Eigen::VectorXd::Constant(q0, -1e300), x.lower, y.lower;
+      hi << Eigen::VectorXd::Constant(q0, 1e300), x.upper, y.upper;
+      const Eigen::VectorXd b = R - x.shift - y.shift;
+      const double cost = (b - A * bounded_least_squares(A, b, lo, hi)).squaredNorm();
+      if (!(cost < std::min(x.cost, y.cost))) continue;
+      // The second effect on the first's model (its start values), found by effect and place.
+      try {
+        Simulator s(x.candidate.model, data, {o.substeps});
+        ++sims;
+        const auto sim = s.simulate(s.parameter_values());
+        const Candidate* second = nullptr;
+        const std::vector<Candidate> on_first = generate_candidates(x.candidate.model, sim, data);
+        for (const auto& c : on_first)
+          if (c.effect == y.candidate.effect && c.equation == y.candidate.equation &&
+              (c.effect != "time_delay" || c.delay_samples == y.candidate.delay_samples))
+            second = &c;
+        if (!second) continue;
+        ScreenedHypothesis p;
+        p.candidate = combine_candidates(x.candidate, *second);
+        // Start: the first's start, the second's new parameters from its own start (by role).
+        Simulator sc(p.candidate.model, data, {o.substeps});
+        Eigen::VectorXd start = sc.parameter_values();
+        for (std::size_t k = 0; k < second->parameters.size(); ++k)
+          for (std::size_t q = 0; q < y.candidate.parameters.size(); ++q)
+            if (y.candidate.roles[q] == second->roles[k])
+              for (std::size_t m = 0; m < p.candidate.model.parameters.size(); ++m) {
+                if (p.candidate.model.parameters[m].name != second->parameters[k]) continue;
+                for (std::size_t n = 0; n < y.candidate.model.parameters.size(); ++n)
+                  if (y.candidate.model.parameters[n].name == y.candidate.parameters[q])
+                    start[static_cast<Eigen::Index>(m)] = y.starts.front()[static_cast<Eigen::Index>(n)];
+              }
+        p.starts = {start};
+        for (std::size_t m = 0; m < p.candidate.model.parameters.size(); ++m) p.candidate.model.parameters[m].value = start[static_cast<Eigen::Index>(m)];
+        p.cost = cost;
+        p.new_parameters = x.new_parameters + y.new_parameters;
+        p.score = cost * std::pow(o.sparsity_tolerance, p.new_parameters);
+        p.note = "pair";
+        out.push_back(std::move(p));
+      } catch (const std::exception&) {
+      }
+    }
+  return out;
 }
 
 }  // namespace
@@ -293,6 +386,14 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
     h.score = h.cost * std::pow(o.sparsity_tolerance, h.new_parameters);
   }
   std::sort(hs.begin(), hs.end(), [](const auto& x, const auto& y) { return x.score < y.score; });
+  if (o.pairs > 1) {
+    std::vector<ScreenedHypothesis> pairs = screen_pairs(a, R, data, hs, o, out.simulations);
+    for (auto& p : pairs) {
+      p.gain = out.baseline > 0 ? 1 - p.cost / out.baseline : 0;
+      hs.push_back(std::move(p));
+    }
+    std::sort(hs.begin(), hs.end(), [](const auto& x, const auto& y) { return x.score < y.score; });
+  }
   out.ranked = std::move(hs);
   return out;
 }

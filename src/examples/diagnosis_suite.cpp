@@ -122,7 +122,13 @@ std::string suite_report(const std::vector<SuitePlantResult>& results, bool tabl
          "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const auto& r : results) {
       std::string truth, named;
-      for (const auto& t : r.truth) truth += (truth.empty() ? "" : ", ") + t.name + " (" + t.where + ", " + std::to_string(static_cast<int>(std::round(100 * t.strength))) + " %)";
+      for (const auto& t : r.truth) {
+        std::ostringstream x;
+        x << t.name << " (" << t.where << ", " << std::round(100 * t.strength) << " %";
+        if (t.detectability > 0) x << ", " << std::setprecision(2) << t.detectability << " sigma" << std::setprecision(1);
+        x << ")";
+        truth += (truth.empty() ? "" : ", ") + x.str();
+      }
       for (std::size_t k = 0; k < r.named.size(); ++k) named += (k ? ", " : "") + r.named[k] + " (" + r.places[k] + ")";
       o << "| " << r.name << " | " << r.family << " | " << (truth.empty() ? "none" : truth) << " | " << (named.empty() ? "none" : named)
         << " | " << (r.error.empty() ? r.answer : "error: " + r.error) << " | " << (r.first_right() ? "yes" : "**no**") << " | "

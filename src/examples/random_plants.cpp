@@ -11,6 +11,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/data/simulation.hpp"
+#include "sets/diagnosis/calibration.hpp"
 
 namespace sets {
 
@@ -226,7 +227,7 @@ void two_mass(Rng& r, Build& b) {
   b.inputs = {{u, N({"u", "force", "cmd"})}};
   const std::string coupling = pk12 + "*(" + x1 + " - " + x2 + ") + " + pc12 + "*(" + v1 + " - " + v2 + ")";
   b.eqs = {{x1, v1, "", {}, ""},
-           {v1, pK + "*" + u + " - " + coupling, pm1, {}, ""},
+           {v1, pK + "*" + u + " - (" + coupling + ")", pm1, {}, ""},
            {x2, v2, "", {}, ""},
            {v2, coupling + " - " + pk2 + "*" + x2 + " - " + pc2 + "*" + v2, pm2, {}, ""}};
   b.outputs = {{x2, N({"x2_meas", "y", "pos2"})}};
@@ -737,6 +738,17 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     } catch (const std::exception&) {
       continue;
     }
+    {
+      // A plant that grows without bound is not a plant anyone identifies: the second half of every
+      // signal must stay within 100 x the first half's RMS.
+      bool bounded = clean_sim.values.allFinite();
+      for (Eigen::Index v = 0; bounded && v < clean_sim.values.cols(); ++v) {
+        const Eigen::Index h = clean_sim.values.rows() / 2;
+        const double first = clean_sim.values.col(v).head(h).norm(), second = clean_sim.values.col(v).tail(h).norm();
+        bounded = second <= 100 * first + 1e-300;
+      }
+      if (!bounded) continue;
+    }
     const Scales sc = scales_of(clean_sim, b.Ts);
     std::vector<Effect> effects;
     for (const auto& e : drawn) effects.push_back(make_effect(r, b, e, sc));
@@ -813,6 +825,32 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     if (!ok) continue;
     std::vector<std::vector<std::pair<std::string, double>>> values;
     const ModelFile truth = truth_with(knobs, -1, &values);
+    // Strong enough to matter: without it, the plant's own structure calibrated on the noise-free
+    // outputs (from the true values) still misses by at least 2 noise levels RMS on some output.
+    std::vector<double> detectability(effects.size(), 0.0);
+    {
+      Eigen::MatrixXd y;
+      if (!simulate(truth, est, y)) continue;
+      Recording clean_rec = est;
+      for (std::size_t j = 0; j < b.outputs.size(); ++j) {
+        const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
+        clean_rec.add(b.outputs[j].second, std::vector<double>(yj.data(), yj.data() + yj.size()));
+      }
+      for (std::size_t i = 0; i < effects.size() && ok; ++i) {
+        try {
+          Simulator s(truth_with(knobs, static_cast<int>(i), nullptr), clean_rec, {2});
+          const CalibrationResult cr = calibrate(s, s.parameter_values(), s.free_parameters());
+          for (Eigen::Index j = 0; cr.ok && j < y.cols(); ++j) {
+            const double sd = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean());
+            const double miss = std::sqrt((y.col(j) - cr.outputs.col(j)).array().square().mean());
+            detectability[i] = std::max(detectability[i], miss / std::max(noise_frac[static_cast<std::size_t>(j)] * sd, 1e-300));
+          }
+        } catch (const std::exception&) {
+        }
+        ok = detectability[i] >= 2.0;
+      }
+    }
+    if (!ok) continue;
     // Measured records.
     SyntheticPlant p;
     p.family = b.family;
@@ -862,7 +900,7 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     p.estimation.source = p.name + " (estimation)";
     p.validation.source = p.name + " (validation)";
     for (std::size_t i = 0; i < effects.size(); ++i)
-      p.effects.push_back({effects[i].name, effects[i].where, values[i], strengths[i]});
+      p.effects.push_back({effects[i].name, effects[i].where, values[i], strengths[i], detectability[i]});
     p.true_effect = p.effects.empty() ? "none" : p.effects.front().name;
     if (!p.effects.empty()) p.true_values = p.effects.front().values;
     std::ostringstream d;

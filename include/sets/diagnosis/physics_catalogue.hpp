@@ -45,7 +45,13 @@ struct Candidate {
   int delay_samples = 0;                 // time_delay only
   bool restart = false;  // calibrate from the file's values: the calibrated nominal may have been
                          // pulled far off by the missing structure (e.g. a mirrored sensor)
+  /// Two effects at once (combine_candidates): the members, each with its own parameters; the
+  /// lists above are their concatenation and `model` holds both. Empty for one effect.
+  std::vector<Candidate> parts;
 };
+
+/// Two effects at once: `second` must have been generated on `first.model`.
+Candidate combine_candidates(const Candidate& first, const Candidate& second);
 
 /// The time_delay candidate for actuator `a` delayed by n samples.
 Candidate delay_candidate(const ModelFile& model, const std::string& actuator, int n);

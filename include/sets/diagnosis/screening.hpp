@@ -12,7 +12,9 @@
 // is not empty. Equation error (where the effect's state equation can be reconstructed from the
 // data, sets/diagnosis/equation_error.hpp): least squares of the integrated equation with the new
 // term, independent of the current model's parameter values, as a second ranking and a start.
-// Ranked by the sparsest explanation: misfit x tolerance^(number of new parameters).
+// Two effects at once: pairs of the best single hypotheses, screened by the same least squares with
+// both sets of columns (no new simulation). Ranked by the sparsest explanation: misfit x
+// tolerance^(number of new parameters).
 
 #include <Eigen/Core>
 
@@ -31,6 +33,8 @@ struct ScreeningOptions {
   double sparsity_tolerance = 1.25;  // the misfit a new parameter must buy: factor per parameter
   std::vector<double> noise_bound;   // per output, for the consistency test (empty: not tested)
   bool equation_error = true;        // also screen by equation error where possible
+  int pairs = 6;                     // two effects at once: every compatible pair of the best this
+                                     // many single hypotheses (0: none)
 };
 
 struct ScreenedHypothesis {
@@ -44,6 +48,10 @@ struct ScreenedHypothesis {
   bool consistent = false;  // the linearised strips under the noise bound have a common point
   double ee_gain = std::numeric_limits<double>::quiet_NaN();  // equation-error gain, NaN: not built
   std::string note;
+  // Its least-squares step at its best grid point (weighted outputs), kept to screen pairs: the
+  // sensitivity columns of its new parameters, the output change of the grid point, their bounds.
+  Eigen::MatrixXd columns;
+  Eigen::VectorXd shift, lower, upper;
 };
 
 struct Screening {

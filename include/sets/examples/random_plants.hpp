@@ -5,9 +5,12 @@
 // and column names, a random sample time (from about 6 samples per period of the fastest mode to
 // several hundred), an excitation from rich (random steps, PRBS, multisine, filtered noise) to
 // poor (a few steps, one sine), white, coloured (AR(1)) or quantised measurement noise, and 0, 1
-// or 2 effects from the whole catalogue, each scaled so that it moves the outputs by a drawn
-// 4-40 % of their RMS (and by several noise levels). The nominal model leaves the effects out and
-// starts from values off by up to a factor 1.8. See docs/reproduction/diagnosis.md.
+// or 2 effects from the whole catalogue. Each effect is weak enough to hide (scaled so that it moves
+// the outputs by a drawn 4-40 % of their RMS before any calibration) and strong enough to matter
+// (the plant's own structure without it, calibrated on the noise-free outputs, still misses by at
+// least 2 noise levels RMS); a draw that cannot satisfy both is drawn again. The nominal model
+// leaves the effects out and starts from values off by up to a factor 1.8.
+// See docs/reproduction/diagnosis.md.
 
 #include <string>
 #include <vector>

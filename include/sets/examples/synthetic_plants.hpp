@@ -21,6 +21,8 @@ struct TrueEffect {
   /// parameters that map cleanly onto the catalogue's form; empty when none does.
   std::vector<std::pair<std::string, double>> values;
   double strength = 0;  // RMS output deviation it causes / RMS of the output (noise-free)
+  double detectability = 0;  // the nominal structure without it, calibrated on the noise-free
+                             // outputs: RMS miss / noise sigma (largest over outputs; 0: not measured)
 };
 
 struct SyntheticPlant {
