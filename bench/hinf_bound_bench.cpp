@@ -9,32 +9,20 @@
 #include <numbers>
 #include <random>
 
+#include "sets/examples/hakvoort.hpp"
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 
 namespace {
 
 constexpr double pi = std::numbers::pi;
 
-sets::RationalModel true_system() { return sets::hinf_example_system(); }
-
-struct Data {
-  Eigen::VectorXd u, y;
-};
+sets::RationalModel true_system() { return sets::hakvoort::system(); }
 
 // u uniform in [-1, 1] from 3000 samples before the record; noise e (Gaussian, or uniform with
 // |e| <= 0.02) through 1/(1 - 0.7 q^-1), as in the app.
-Data simulate(int N, bool bounded) {
-  const sets::RationalModel G = true_system();
+sets::hakvoort::Data simulate(int N, bool bounded) {
   std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> U(-1, 1);
-  std::normal_distribution<double> Nn(0, 1);
-  const int T = N + 3000;
-  Eigen::VectorXd u(T), e(T);
-  for (auto& x : u) x = U(rng);
-  for (auto& x : e) x = 0.02 * (bounded ? U(rng) : Nn(rng));
-  const Eigen::VectorXd y0 = sets::DiscreteTf{G.b, G.a, {}}.filter(u);
-  const Eigen::VectorXd v = sets::DiscreteTf{Eigen::VectorXd::Ones(1), Eigen::Vector2d(1, -0.7), {}}.filter(e);
-  return {u.tail(N), (y0 + v).tail(N)};
+  return sets::hakvoort::simulate(true_system(), N, 0.02, bounded, rng);
 }
 
 Eigen::VectorXd grid(int points) {
@@ -71,7 +59,7 @@ void BM_UncertaintySet(benchmark::State& state) {
   const int N = static_cast<int>(state.range(0));
   const bool bounded = state.range(1) != 0;
   const int points = bounded ? 100 : 150;
-  const Data d = simulate(N, bounded);
+  const auto d = simulate(N, bounded);
   const Eigen::VectorXd w = grid(points);
   int lps = 0;
   for (auto _ : state) {
@@ -87,7 +75,7 @@ void BM_UncertaintySet(benchmark::State& state) {
 // Steps 2-4 on one stochastic uncertainty set (N = 2000, 150 frequencies).
 const sets::UncertaintySet& stochastic_set() {
   static const sets::UncertaintySet S = [] {
-    const Data d = simulate(2000, false);
+    const auto d = simulate(2000, false);
     return sets::uncertainty_set(d.u, d.y, basis(), 40, grid(150), priors(), uncertainty_options(false));
   }();
   return S;

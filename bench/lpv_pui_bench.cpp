@@ -8,32 +8,18 @@
 
 #include <random>
 
+#include "sets/examples/cerone_regruto.hpp"
 #include "sets/methods/lpv_pui/lpv_model.hpp"
 
 namespace {
 
 sets::LpvMeasurements paper_data(int N, std::uint64_t seed, double delta) {
-  const auto m = sets::LpvModelStructure::cerone_regruto_example();
-  Eigen::VectorXd theta(6);
-  theta << 0.5, -0.2, 0.3, 0.1, 1.0, 0.2;
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
-  const int T = N + 2;
-  Eigen::VectorXd u(T);
-  Eigen::MatrixXd lambda(T, 1);
-  for (int t = 0; t < T; ++t) u[t] = U(rng);
-  for (int t = 0; t < T; ++t) lambda(t, 0) = U(rng);
-  sets::LpvMeasurements d;
-  d.u = u;
-  d.y = sets::simulate_lpv(m, theta, u, lambda) + delta * Eigen::VectorXd::NullaryExpr(T, [&] { return U(rng); });
-  d.r = lambda + delta * Eigen::MatrixXd::NullaryExpr(T, 1, [&] { return U(rng); });
-  d.delta_eta = Eigen::VectorXd::Constant(1, delta);
-  d.delta_eps = Eigen::MatrixXd::Constant(1, 1, delta);
-  return d;
+  return sets::cerone_regruto::simulate(N, true, delta, rng).data;
 }
 
 sets::FeasibleParameterSet paper_fps(int N) {
-  const auto reg = sets::lpv_regression(sets::LpvModelStructure::cerone_regruto_example(), paper_data(N, 1, 4.8e-3));
+  const auto reg = sets::lpv_regression(sets::cerone_regruto::structure(), paper_data(N, 1, 4.8e-3));
   return sets::FeasibleParameterSet::from_interval_data(reg.Phi, reg.Y);
 }
 
@@ -57,7 +43,7 @@ BENCHMARK(BM_LpvPui)->ArgNames({"N", "working_set"})
     ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_LpvRegression(benchmark::State& state) {
-  const auto m = sets::LpvModelStructure::cerone_regruto_example();
+  const auto m = sets::cerone_regruto::structure();
   const auto d = paper_data(static_cast<int>(state.range(0)), 1, 4.8e-3);
   for (auto _ : state) {
     const auto reg = sets::lpv_regression(m, d);

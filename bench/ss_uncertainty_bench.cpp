@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 
@@ -16,18 +17,12 @@ struct Data {
 
 const Data& data() {
   static const Data d = [] {
-    const sets::StateSpaceModel s = sets::farah_example_system();
+    const sets::StateSpaceModel s = sets::farah::system();
     Data r;
     std::mt19937_64 rng(1);
-    std::bernoulli_distribution coin(0.5);
-    std::normal_distribution<double> g;
-    r.u.resize(1000, 2);
-    for (int t = 0; t < 1000; ++t) r.u.row(t) << (coin(rng) ? 1.0 : -1.0), (coin(rng) ? 1.0 : -1.0);
-    r.y = sets::simulate(s, r.u);
-    for (int j = 0; j < 2; ++j) {
-      const double sd = std::sqrt((r.y.col(j).array() - r.y.col(j).mean()).square().mean() / 100.0);
-      for (int t = 0; t < 1000; ++t) r.y(t, j) += sd * g(rng);
-    }
+    const auto d = sets::farah::simulate(s, 1000, 20.0, rng);  // random binary input, 20 dB output noise, as in the app
+    r.u = d.u;
+    r.y = d.y;
     r.rows = sets::select_rows(s.A, s.C, sets::RowSelection::output_major);
     r.truth = sets::CanonicalStructure(r.rows, 2, 2, false).to_parameters(sets::canonical_form(s, r.rows));
     return r;

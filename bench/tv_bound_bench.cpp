@@ -4,24 +4,17 @@
 
 #include <random>
 
+#include "sets/examples/crane.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
 
-#include "sets/examples/crane.hpp"
-
 namespace {
-
-
 
 const Eigen::Vector3d kNominal(2.0, 3.3, 0.25);  // (b0, lambda0, kappa0)
 
 sets::TimeVaryingModel crane() { return sets::crane::model(kNominal[1], kNominal[2], kNominal[0]); }
 
-// A square wave of period 4 s, as in the app.
-Eigen::MatrixXd input(int N) {
-  Eigen::MatrixXd u(N, 1);
-  for (int k = 0; k < N; ++k) u(k, 0) = (k / 40) % 2 == 0 ? 1.0 : -1.0;
-  return u;
-}
+// The app's default input: a square wave of period 4 s.
+Eigen::MatrixXd input(int N) { return sets::crane::input("square", N, 1); }
 
 // Crane data: the perturbation pi, white noise of window norm `noise` (window w).
 sets::TvBoundData crane_data(const Eigen::MatrixXd& pi, double noise, const sets::WindowNorm& w) {
@@ -37,17 +30,8 @@ sets::TvBoundData crane_data(const Eigen::MatrixXd& pi, double noise, const sets
   return {sets::biaffine_regression(m, x0, u), sets::simulate(m, x0, u, pi).y + eta, {w}};
 }
 
-// Table I, case 1 shapes (as in the app): piecewise-constant steps in all three parameters.
-Eigen::MatrixXd table1_case1(int N) {
-  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-  for (int k = 0; k < N; ++k) {
-    const double s = static_cast<double>(k) / N;
-    pi(k, 0) = 0.2 * (s < 0.2 ? 0 : s < 0.6 ? 1 : 0.5);
-    pi(k, 1) = 1.0 * (s < 0.3 ? 0 : s < 0.7 ? 1 : 0.4);
-    pi(k, 2) = 0.5 * (s < 0.1 ? 0 : s < 0.45 ? 0.5 : s < 0.8 ? 1 : 0);
-  }
-  return pi;
-}
+// Table I, case 1 (as in the app): piecewise-constant steps in all three parameters.
+Eigen::MatrixXd table1_case1(int N) { return sets::crane::perturbation(sets::crane::cases("I").front(), N); }
 
 void BM_BiaffineRegression(benchmark::State& state) {
   const int N = static_cast<int>(state.range(0));

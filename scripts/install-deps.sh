@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every build, test and plot dependency of `sets` from Debian packages.
+# Installs every build, test and plot dependency of `sets` from Debian packages (clang-14,
+# libFuzzer and llvm-symbolizer for the sanitizer builds and fuzz harnesses of scripts/sanitize.sh).
 # Used by the README's two commands and by .ci/run; safe to run again.
 set -euo pipefail
 SUDO=""
@@ -11,5 +12,6 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev \
   libglpk-dev \
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev \
-  libcli11-dev nlohmann-json3-dev libmuparser-dev libmatio-dev \
-  gnuplot-nox >/dev/null
+  libcli11-dev nlohmann-json3-dev libmuparser-dev libmatio-dev zlib1g-dev \
+  gnuplot-nox \
+  clang-14 libfuzzer-14-dev libclang-rt-14-dev llvm-14 >/dev/null

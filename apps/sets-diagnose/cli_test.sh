@@ -22,6 +22,10 @@ check "usage: --help" 0 "--report" -- "$app" --help
 check "--threads with trailing text" 1 "--threads: .*12:30" -- "$app" --example --threads 12:30
 check "--threads not whole" 1 "--threads: .*2.5" -- "$app" --example --threads 2.5
 check "missing --data" 1 "give --model and --data" -- "$app" --model "$dir/model.json"
+sed 's/"value": 1.0/"value": 1e400/' "$dir/model.json" >"$dir/huge.json"
+check "1e400 in the model file: our error with file, line and column" 1 "huge.json.*line 2, column" -- \
+  "$app" --model "$dir/huge.json" --data "$dir/good.csv" --quiet
+check_silent_stdout "1e400: no JSON library exception" "sets-diagnose: error: .*huge.json"
 sed '101s/^[^,]*,/0.5abc,/' "$dir/good.csv" >"$dir/abc.csv"
 check "data: a number with trailing text" 1 "abc.csv: line 101, column 1 \(\"u\"\): not a number: \"0.5abc\"" -- \
   "$app" --model "$dir/model.json" --data "$dir/abc.csv" --quiet

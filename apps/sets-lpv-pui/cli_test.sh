@@ -24,6 +24,11 @@ check "good data, structure by flags" 0 "a2,2\[lambda\^2\]" -- \
 echo '{"alpha": 1, "a": [["lambda"], ["1", "lambda^2"]], "b": [[], ["1"], ["lambda", "lambda^2"]]}' >"$dir/model.json"
 check "good data, structure by JSON" 0 "b2,1\[lambda\]" -- "$app" "${data[@]}" --model "$dir/model.json" --json "$dir/out.json"
 grep -q '"guaranteed": true' "$dir/out.json" || { echo "FAIL json output"; fail=1; }
+echo '{"alpha": 1, "a": [["lambda"], ["1", "lambda^2"]],
+ "b": [[], [1e400], ["lambda", "lambda^2"]]}' >"$dir/huge.json"
+check "1e400 in the model JSON: our error with file, line and column" 1 "huge.json.*line 2, column" -- \
+  "$app" "${data[@]}" --model "$dir/huge.json"
+check_silent_stdout "1e400: no JSON library exception" "sets-lpv-pui: error: .*huge.json"
 
 sed '51s/^\([0-9]*\),\([^,]*\),[^,]*,/\1,\2,nan,/' "$dir/good.csv" >"$dir/nan.csv"
 check "NaN sample" 1 "nan.csv: data row 50 \(line 51\), column \"y\": NaN or infinite value" -- \

@@ -6,6 +6,7 @@
 #include "sets/core/bool_interval.hpp"
 #include "sets/core/error.hpp"
 #include "sets/core/exit_code.hpp"
+#include "sets/core/printable.hpp"
 
 #include "sets/numeric/interval.hpp"
 #include "sets/numeric/interval_matrix.hpp"

@@ -4,42 +4,23 @@
 #include <string>
 
 #include "sets/core/error.hpp"
+#include "sets/core/printable.hpp"
 
 namespace sets {
 
 namespace {
 
-// Length of a well-formed UTF-8 sequence starting at s[i] (0 if there is none).
-std::size_t utf8_length(const std::string& s, std::size_t i) {
-  const auto b = static_cast<unsigned char>(s[i]);
-  const std::size_t n = b >= 0xC2 && b <= 0xDF ? 2 : b >= 0xE0 && b <= 0xEF ? 3 : b >= 0xF0 && b <= 0xF4 ? 4 : 0;
-  if (n == 0 || i + n > s.size()) return 0;
-  for (std::size_t k = 1; k < n; ++k)
-    if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
-  return n;
-}
-
-// The message as a terminal may receive it: printable ASCII, newlines, tabs and UTF-8 as they are,
-// every other byte as \xNN.
+// The message as a terminal may receive it (printable() per line: a message may span lines).
 std::string printable_message(const std::string& s) {
   std::string out;
-  for (std::size_t i = 0; i < s.size();) {
-    const auto c = static_cast<unsigned char>(s[i]);
-    if ((c >= 0x20 && c < 0x7F) || c == '\n' || c == '\t') {
-      out += static_cast<char>(c);
-      ++i;
-    } else if (const std::size_t n = c >= 0x80 ? utf8_length(s, i) : 0) {
-      out.append(s, i, n);
-      i += n;
-    } else {
-      static const char hex[] = "0123456789abcdef";
-      out += "\\x";
-      out += hex[c >> 4];
-      out += hex[c & 15];
-      ++i;
-    }
+  for (std::size_t pos = 0;;) {
+    const auto nl = s.find('\n', pos);
+    out += printable(std::string_view(s).substr(pos, nl == std::string::npos ? std::string::npos : nl - pos),
+                     std::string::npos);
+    if (nl == std::string::npos) return out;
+    out += '\n';
+    pos = nl + 1;
   }
-  return out;
 }
 
 }  // namespace

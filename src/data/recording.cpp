@@ -7,10 +7,15 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <cstdlib>
 #include <map>
+#include <mutex>
+#include <set>
 #include <sstream>
 
+#include "data/mat_file.hpp"
 #include "sets/core/error.hpp"
+#include "sets/core/printable.hpp"
 #include "sets/models/model_file.hpp"
 
 namespace sets {
@@ -25,8 +30,8 @@ const std::vector<double>& Recording::column(const std::string& name) const {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return columns[i];
   std::string list;
-  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  throw InputError(source + ": missing column \"" + name + "\" (the file has: " + list + ")");
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + printable(n, 60);
+  throw InputError(source + ": missing column \"" + printable(name, 100) + "\" (the file has: " + printable(list, 400) + ")");
 }
 
 void Recording::add(const std::string& name, std::vector<double> values) {
@@ -48,10 +53,10 @@ std::size_t Recording::column_index(const std::string& name_or_number, const std
     if (k >= 1 && k <= names.size()) return k - 1;
   }
   std::string list;
-  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  throw InputError(source + ": no column \"" + name_or_number + "\"" + (what.empty() ? "" : " (given by " + what + ")") +
-                   "; the file has: " + list + " (or give a column number from 1 to " + std::to_string(names.size()) +
-                   ")");
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + printable(n, 60);
+  throw InputError(source + ": no column \"" + printable(name_or_number, 100) + "\"" +
+                   (what.empty() ? "" : " (given by " + what + ")") + "; the file has: " + printable(list, 400) +
+                   " (or give a column number from 1 to " + std::to_string(names.size()) + ")");
 }
 
 Eigen::MatrixXd Recording::matrix(const std::vector<std::string>& names_or_numbers, const std::string& what) const {
@@ -77,12 +82,20 @@ bool skipped(const std::string& line) {
   return t.empty() || t[0] == '#';
 }
 
-// The whole of `cell` as a double ("+" allowed), or false.
-bool parse_number(const std::string& cell, double& v) {
+enum class Parsed { number, too_large, not_a_number };
+
+// The whole of `cell` as a double ("+" allowed). A number too small for a double (1e-400) is 0;
+// one too large (1e400) is named as such.
+Parsed parse_number(const std::string& cell, double& v) {
   const char* b = cell.data() + (!cell.empty() && cell[0] == '+');
   const char* e = cell.data() + cell.size();
   const auto res = std::from_chars(b, e, v);
-  return b != e && res.ec == std::errc() && res.ptr == e;
+  if (b == e || res.ptr != e) return Parsed::not_a_number;
+  if (res.ec == std::errc::result_out_of_range) {
+    v = std::strtod(std::string(b, e).c_str(), nullptr);  // 0 (underflow) or +-inf
+    return std::isfinite(v) ? Parsed::number : Parsed::too_large;
+  }
+  return res.ec == std::errc() ? Parsed::number : Parsed::not_a_number;
 }
 
 std::vector<std::string> split_fields(const std::string& line, char separator) {
@@ -118,13 +131,16 @@ Recording parse_csv(const std::string& text, const std::string& source) {
   for (const auto& cell : first) {
     double v = 0;
     const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
-    header = header || !(nan_text || parse_number(cell, v));
+    header = header || !(nan_text || parse_number(cell, v) != Parsed::not_a_number);
   }
   if (header) {
+    std::set<std::string> seen;
     for (const auto& cell : first) {
-      if (cell.empty())
-        throw InputError(source + ": line " + std::to_string(line_no) + ", column " +
-                         std::to_string(r.names.size() + 1) + ": empty column name in the header");
+      const std::string where = source + ": line " + std::to_string(line_no) + ", column " +
+                                std::to_string(r.names.size() + 1);
+      if (cell.empty()) throw InputError(where + ": empty column name in the header");
+      if (!seen.insert(cell).second)
+        throw InputError(where + ": the column name \"" + printable(cell, 100) + "\" is given twice");
       r.names.push_back(cell);
     }
   } else {
@@ -150,14 +166,18 @@ Recording parse_csv(const std::string& text, const std::string& source) {
       const std::string& cell = cells[col];
       double v = 0;
       const bool nan_text = cell == "nan" || cell == "NaN" || cell == "NAN" || cell == "-nan";
-      if (nan_text)
-        v = std::nan("");
-      else if (!parse_number(cell, v))
-        throw InputError(source + ": line " + std::to_string(line_no) + ", column " + std::to_string(col + 1) +
-                         " (\"" + r.names[col] + "\"): not a number: \"" + cell + "\"");
+      const auto place = [&] {
+        return source + ": line " + std::to_string(line_no) + ", column " + std::to_string(col + 1) + " (\"" +
+               printable(r.names[col], 100) + "\")";
+      };
+      const Parsed parsed = nan_text ? Parsed::number : parse_number(cell, v);
+      if (nan_text) v = std::nan("");
+      if (parsed == Parsed::too_large)
+        throw InputError(place() + ": the number " + printable(cell, 40) + " is outside the range of double precision");
+      if (parsed == Parsed::not_a_number) throw InputError(place() + ": not a number: \"" + printable(cell, 40) + "\"");
       if (!std::isfinite(v))
         throw InputError(source + ": data row " + std::to_string(row) + " (line " + std::to_string(line_no) +
-                         "), column \"" + r.names[col] + "\": NaN or infinite value");
+                         "), column \"" + printable(r.names[col], 100) + "\": NaN or infinite value");
       r.columns[col].push_back(v);
     }
   }
@@ -173,40 +193,77 @@ Recording read_csv(const std::string& path) {
   return parse_csv(ss.str(), path);
 }
 
-Recording read_mat(const std::string& path) {
+namespace {
+
+// matio reports through a log function; its default prints to stderr (bytes of the file
+// included) and aborts on errors. Ours keeps quiet: read_mat says what went wrong.
+void quiet_matio_log(int, char*) {}
+
+// v7.3 (HDF5) files: matio and the HDF5 library. Not hardened like the level 4/5 reader: HDF5's
+// own parser is trusted with the file (docs/reliability.md).
+std::vector<Mat_vector> read_mat_v73_vectors(const std::string& bytes, const std::string& path) {
+  static const char signature[] = "\x89HDF\r\n\x1a\n";
+  if (bytes.size() < 520 || bytes.compare(512, 8, signature, 8) != 0)
+    throw InputError(path + ": a v7.3 .mat header but no HDF5 data at byte 512");
+  static std::once_flag log_once;
+  std::call_once(log_once, [] { Mat_LogInitFunc("sets", quiet_matio_log); });
   mat_t* mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
-  if (!mat) throw InputError(path + ": cannot open as a MATLAB .mat file");
-  std::vector<std::pair<std::string, std::vector<double>>> vars;
-  while (matvar_t* v = Mat_VarReadNext(mat)) {
-    const bool numeric = v->class_type != MAT_C_CHAR && v->class_type != MAT_C_CELL &&
-                         v->class_type != MAT_C_STRUCT && v->class_type != MAT_C_SPARSE &&
-                         v->class_type != MAT_C_OBJECT && v->class_type != MAT_C_FUNCTION;
-    if (numeric && !v->isComplex && v->rank == 2 && v->name &&
-        (v->dims[0] == 1 || v->dims[1] == 1) && v->dims[0] * v->dims[1] > 1 && v->data) {
-      const std::size_t n = v->dims[0] * v->dims[1];
-      std::vector<double> out(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        switch (v->data_type) {
-          case MAT_T_DOUBLE: out[i] = static_cast<const double*>(v->data)[i]; break;
-          case MAT_T_SINGLE: out[i] = static_cast<const float*>(v->data)[i]; break;
-          case MAT_T_UINT8: out[i] = static_cast<const std::uint8_t*>(v->data)[i]; break;
-          case MAT_T_INT8: out[i] = static_cast<const std::int8_t*>(v->data)[i]; break;
-          case MAT_T_UINT16: out[i] = static_cast<const std::uint16_t*>(v->data)[i]; break;
-          case MAT_T_INT16: out[i] = static_cast<const std::int16_t*>(v->data)[i]; break;
-          case MAT_T_UINT32: out[i] = static_cast<const std::uint32_t*>(v->data)[i]; break;
-          case MAT_T_INT32: out[i] = static_cast<const std::int32_t*>(v->data)[i]; break;
-          default: out.clear(); break;
-        }
-        if (out.empty()) break;
+  if (!mat) throw InputError(path + ": cannot open as a MATLAB v7.3 .mat file");
+  std::vector<Mat_vector> vars;
+  std::vector<std::string> wanted;  // names of the real numeric vectors, from the headers alone
+  while (matvar_t* v = Mat_VarReadNextInfo(mat)) {
+    const bool numeric = v->class_type >= MAT_C_DOUBLE && v->class_type <= MAT_C_UINT64;
+    if (numeric && !v->isComplex && v->rank == 2 && v->name && v->dims && (v->dims[0] == 1 || v->dims[1] == 1) &&
+        v->dims[0] * v->dims[1] > 1 && v->dims[0] * v->dims[1] <= max_mat_elements)
+      wanted.emplace_back(v->name);
+    Mat_VarFree(v);
+  }
+  for (const auto& name : wanted) {
+    matvar_t* v = Mat_VarRead(mat, name.c_str());
+    if (!v) continue;
+    const std::size_t n = v->dims[0] * v->dims[1];
+    Mat_vector out{name, std::vector<double>(n)};
+    bool ok = v->data != nullptr;
+    for (std::size_t i = 0; i < n && ok; ++i) {
+      switch (v->data_type) {
+        case MAT_T_DOUBLE: out.values[i] = static_cast<const double*>(v->data)[i]; break;
+        case MAT_T_SINGLE: out.values[i] = static_cast<const float*>(v->data)[i]; break;
+        case MAT_T_UINT8: out.values[i] = static_cast<const std::uint8_t*>(v->data)[i]; break;
+        case MAT_T_INT8: out.values[i] = static_cast<const std::int8_t*>(v->data)[i]; break;
+        case MAT_T_UINT16: out.values[i] = static_cast<const std::uint16_t*>(v->data)[i]; break;
+        case MAT_T_INT16: out.values[i] = static_cast<const std::int16_t*>(v->data)[i]; break;
+        case MAT_T_UINT32: out.values[i] = static_cast<const std::uint32_t*>(v->data)[i]; break;
+        case MAT_T_INT32: out.values[i] = static_cast<const std::int32_t*>(v->data)[i]; break;
+        case MAT_T_UINT64: out.values[i] = static_cast<double>(static_cast<const std::uint64_t*>(v->data)[i]); break;
+        case MAT_T_INT64: out.values[i] = static_cast<double>(static_cast<const std::int64_t*>(v->data)[i]); break;
+        default: ok = false; break;
       }
-      if (!out.empty()) vars.emplace_back(v->name, std::move(out));
     }
+    if (ok) vars.push_back(std::move(out));
     Mat_VarFree(v);
   }
   Mat_Close(mat);
+  return vars;
+}
+
+}  // namespace
+
+Recording read_mat(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the data file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string bytes = ss.str();
+  std::vector<Mat_vector> vars;
+  switch (mat_format(bytes)) {
+    case Mat_format::v5: vars = read_mat_v5_vectors(bytes, path); break;
+    case Mat_format::v4: vars = read_mat_v4_vectors(bytes, path); break;
+    case Mat_format::v73: vars = read_mat_v73_vectors(bytes, path); break;
+    case Mat_format::unknown: throw InputError(path + ": not a MATLAB .mat file (too short)");
+  }
   if (vars.empty()) throw InputError(path + ": no numeric vector variables in the .mat file");
   std::map<std::size_t, int> count;
-  for (const auto& v : vars) ++count[v.second.size()];
+  for (const auto& v : vars) ++count[v.values.size()];
   std::size_t n = 0;
   int best = 0;
   for (const auto& [len, c] : count)
@@ -214,12 +271,12 @@ Recording read_mat(const std::string& path) {
   Recording r;
   r.source = path;
   for (auto& v : vars) {
-    if (v.second.size() != n) continue;
+    if (v.values.size() != n) continue;
     for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(v.second[i]))
-        throw InputError(path + ": variable \"" + v.first + "\", sample " + std::to_string(i + 1) +
+      if (!std::isfinite(v.values[i]))
+        throw InputError(path + ": variable \"" + printable(v.name, 64) + "\", sample " + std::to_string(i + 1) +
                          ": NaN or infinite value");
-    r.add(v.first, std::move(v.second));
+    r.add(v.name, std::move(v.values));
   }
   return r;
 }

@@ -6,11 +6,12 @@
 #include <cmath>
 #include <deque>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 
+#include "models/expression.hpp"
 #include "sets/core/error.hpp"
+#include "sets/core/printable.hpp"
 
 namespace sets {
 
@@ -77,48 +78,22 @@ struct Simulator::Impl {
   }
 
   void compile(mu::Parser& p, const std::string& text, const std::string& where) {
-    // prev(x, n) -> a generated variable filled from the history before each sample interval.
-    static const std::regex prev_re(R"(prev\s*\(\s*([A-Za-z_][A-Za-z0-9_]*)\s*,\s*([0-9]+)\s*\))");
-    std::string rewritten;
-    auto begin = std::sregex_iterator(text.begin(), text.end(), prev_re);
-    std::size_t last = 0;
-    for (auto it = begin; it != std::sregex_iterator(); ++it) {
-      const auto& m = *it;
-      const std::string x = m[1].str();
-      const int n = std::stoi(m[2].str());
-      auto s = slot_of.find(x);
-      if (s == slot_of.end())
-        throw InputError(model.source + ": unknown symbol \"" + x + "\" in prev() in " + where + ": " + text);
-      if (n < 1) throw InputError(model.source + ": prev(" + x + ", " + m[2].str() + ") in " + where + ": n must be >= 1");
-      const std::string var = "prev__" + x + "__" + std::to_string(n);
-      if (!slot_of.count(var)) {
-        const int slot = new_slot(var);
-        prevs.push_back({s->second, n, slot});
+    // The expression layer checks the text and rewrites prev(x, n) into a generated variable,
+    // filled from the history before each sample interval.
+    const Checked_expression e = check_expression(
+        text, [&](const std::string& n) { return is_symbol_name(n) && slot_of.count(n) > 0; },
+        model.source + ": " + where);
+    for (const auto& pr : e.prevs)
+      if (!slot_of.count(pr.variable)) {
+        const int slot = new_slot(pr.variable);
+        prevs.push_back({slot_of.at(pr.symbol), pr.lag, slot});
       }
-      rewritten += text.substr(last, static_cast<std::size_t>(m.position(0)) - last) + var;
-      last = static_cast<std::size_t>(m.position(0) + m.length(0));
-    }
-    rewritten += text.substr(last);
-    if (rewritten.find("prev") != std::string::npos && std::regex_search(rewritten, std::regex(R"(\bprev\s*\()")))
-      throw InputError(model.source + ": " + where + ": prev(x, n) needs a symbol and a whole number: " + text);
     try {
-      p.SetExpr(rewritten);
-      // Which variables does it use? Undefined ones are reported by name.
-      mu::Parser probe;
-      probe.SetExpr(rewritten);
-      const auto used = probe.GetUsedVar();
-      for (const auto& [name, ptr] : used) {
-        (void)ptr;
-        if (!slot_of.count(name))
-          throw InputError(model.source + ": unknown symbol \"" + name + "\" in " + where + ": " + text);
-      }
-      for (const auto& [name, ptr] : used) {
-        (void)ptr;
-        p.DefineVar(name, &slots[static_cast<std::size_t>(slot_of.at(name))]);
-      }
-      p.Eval();  // syntax errors surface here, not during simulation
-    } catch (const mu::Parser::exception_type& e) {
-      throw InputError(model.source + ": cannot parse " + where + ": \"" + text + "\": " + e.GetMsg());
+      compile_expression(p, e, [&](const std::string& n) { return &slots[static_cast<std::size_t>(slot_of.at(n))]; });
+      p.Eval();  // anything muparser still objects to surfaces here, not during simulation
+    } catch (const mu::Parser::exception_type& err) {
+      throw InputError(model.source + ": cannot parse " + where + ": \"" + printable(text, 120) +
+                       "\": " + printable(err.GetMsg(), 200));
     }
   }
 

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "models/expression.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/numeric/interval.hpp"
 #include "sets/numeric/linear_program.hpp"
@@ -20,18 +21,10 @@ namespace sets {
 
 namespace {
 
+// The model symbols an expression uses (the Simulator built before has checked every expression).
 std::set<std::string> used_symbols(const std::string& text) {
-  std::set<std::string> out;
-  try {
-    mu::Parser probe;
-    probe.SetExpr(text);
-    for (const auto& [name, ptr] : probe.GetUsedVar()) {
-      (void)ptr;
-      out.insert(name);
-    }
-  } catch (const mu::Parser::exception_type&) {
-  }
-  return out;
+  const auto e = check_expression(text, [](const std::string&) { return true; }, "equation");
+  return {e.symbols.begin(), e.symbols.end()};
 }
 
 std::string trimmed(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t")); }
@@ -117,10 +110,11 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
   for (const auto& [s, k] : kind) vars[s] = 0;
   for (const auto& s : needed_signals) vars[s] = 0;
   auto compile = [&](mu::Parser& p, const std::string& text) {
-    p.SetExpr(text);
-    for (const auto& s : used_symbols(text)) p.DefineVar(s, &vars[s]);
+    compile_expression(p, check_expression(text, [](const std::string&) { return true; }, "equation"),
+                       [&](const std::string& s) { return &vars[s]; });
   };
   std::vector<std::pair<double*, mu::Parser>> signals;
+  signals.reserve(model.signals.size());  // compiled parsers are not moved afterwards
   for (const auto& [name, expr] : model.signals)
     if (needed_signals.count(name)) {
       signals.emplace_back(&vars[name], mu::Parser());

@@ -34,7 +34,7 @@ Ellipsoid::Ellipsoid(Eigen::VectorXd center, Eigen::MatrixXd shape)
                      std::to_string(P_.rows()) + "x" + std::to_string(P_.cols()));
   check_finite(c_, "centre");
   check_finite(P_, "shape matrix");
-  const double scale = P_.cwiseAbs().maxCoeff() * (n > 0 ? 1.0 : 0.0);
+  const double scale = n > 0 ? P_.cwiseAbs().maxCoeff() : 0.0;  // maxCoeff of an empty matrix reads past its end
   if (n > 0 && (P_ - P_.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
     throw InputError("Ellipsoid: shape matrix is not symmetric");
   P_ = (0.5 * (P_ + P_.transpose())).eval();

@@ -1,6 +1,7 @@
 #include "sets/domains/set_io.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,8 +9,10 @@
 #include <ostream>
 #include <sstream>
 
+#include "core/json_text.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
+#include "sets/core/printable.hpp"
 
 namespace sets {
 
@@ -45,7 +48,8 @@ double read_number(const json& x, const std::string& where, const std::string& f
     if (s == "inf") return std::numeric_limits<double>::infinity();
     if (s == "-inf") return -std::numeric_limits<double>::infinity();
   }
-  bad(where, field, "expected a number, got " + x.dump());
+  bad(where, field, std::string("expected a number (or \"inf\", \"-inf\"), got ") +
+                        (x.is_string() ? "the string \"" + printable(x.get<std::string>(), 40) + "\"" : x.type_name()));
 }
 
 Eigen::VectorXd read_vec(const json& j, const std::string& where, const std::string& field) {
@@ -56,16 +60,19 @@ Eigen::VectorXd read_vec(const json& j, const std::string& where, const std::str
   return v;
 }
 
-// Array of equally long arrays -> matrix whose rows (or columns) are those arrays.
+// Array of equally long arrays -> matrix whose rows (or columns) are those arrays. Sizes are
+// checked against the data before anything is allocated.
 Eigen::MatrixXd read_rows(const json& j, const std::string& where, const std::string& field, Eigen::Index width) {
   if (!j.is_array()) bad(where, field, "expected an array of arrays");
-  Eigen::MatrixXd M(j.size(), width);
   for (std::size_t i = 0; i < j.size(); ++i) {
     const auto name = field + "[" + std::to_string(i) + "]";
-    const Eigen::VectorXd r = read_vec(j[i], where, name);
-    if (r.size() != width) bad(where, name, "has " + std::to_string(r.size()) + " entries, expected " + std::to_string(width));
-    M.row(static_cast<Eigen::Index>(i)) = r.transpose();
+    if (!j[i].is_array()) bad(where, name, "expected an array of numbers");
+    if (j[i].size() != static_cast<std::size_t>(width))
+      bad(where, name, "has " + std::to_string(j[i].size()) + " entries, expected " + std::to_string(width));
   }
+  Eigen::MatrixXd M(static_cast<Eigen::Index>(j.size()), width);
+  for (std::size_t i = 0; i < j.size(); ++i)
+    M.row(static_cast<Eigen::Index>(i)) = read_vec(j[i], where, field + "[" + std::to_string(i) + "]").transpose();
   return M;
 }
 
@@ -116,8 +123,10 @@ AnySet from_json(const json& j, const std::string& where) {
     }
     if (type == "hpolytope") {
       const json& d = field(j, "dimension", where);
-      if (!d.is_number_integer() || d.get<long>() < 0) bad(where, "dimension", "expected a non-negative integer");
-      return HPolytope(read_rows(field(j, "A", where), where, "A", d.get<long>()),
+      const bool whole = d.is_number_unsigned() || (d.is_number_integer() && d.get<std::int64_t>() >= 0);
+      if (!whole || d.get<std::uint64_t>() > static_cast<std::uint64_t>(max_set_dimension))
+        bad(where, "dimension", "expected a whole number from 0 to " + std::to_string(max_set_dimension));
+      return HPolytope(read_rows(field(j, "A", where), where, "A", d.get<Eigen::Index>()),
                        read_vec(field(j, "b", where), where, "b"));
     }
     if (type == "vpolytope") {
@@ -130,23 +139,23 @@ AnySet from_json(const json& j, const std::string& where) {
     if (msg.rfind(where, 0) == 0) throw;
     throw InputError(where + ": " + msg);
   }
-  bad(where, "type", "unknown set type '" + type + "' (box, ellipsoid, zonotope, hpolytope, vpolytope)");
+  bad(where, "type", "unknown set type '" + printable(type, 40) + "' (box, ellipsoid, zonotope, hpolytope, vpolytope)");
 }
 
 void save_json(const std::string& path, const AnySet& set) {
   write_file_atomically(path, to_json(set).dump(2) + "\n");
 }
 
+AnySet parse_set_json(const std::string& text, const std::string& where) {
+  return from_json(parse_json_text(text, where), where);
+}
+
 AnySet load_json(const std::string& path) {
-  std::ifstream is(path);
+  std::ifstream is(path, std::ios::binary);
   if (!is) throw InputError(path + ": cannot open");
-  json j;
-  try {
-    j = json::parse(is);
-  } catch (const json::parse_error& e) {
-    throw InputError(path + ": malformed JSON: " + e.what());
-  }
-  return from_json(j, path);
+  std::ostringstream text;
+  text << is.rdbuf();
+  return parse_set_json(text.str(), path);
 }
 
 Eigen::MatrixXd projection_polygon(const AnySet& set, int i, int j, int directions) {

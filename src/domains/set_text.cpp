@@ -35,10 +35,13 @@ class Text_parser {
     expect('(');
     if (identifier("'dim'") != "dim") fail("expected 'dim=' as the first argument");
     expect('=');
+    skip_space();
+    const std::size_t dim_at = pos_;
     const json dim_value = number();
+    // Checked before the cast: a double outside the range of long makes the cast undefined.
     if (!dim_value.is_number() || std::floor(dim_value.get<double>()) != dim_value.get<double>() ||
-        dim_value.get<double>() < 0)
-      fail("'dim' must be a non-negative integer");
+        dim_value.get<double>() < 0 || dim_value.get<double>() > static_cast<double>(max_set_dimension))
+      fail_at(dim_at, "'dim' must be a whole number from 0 to " + std::to_string(max_set_dimension));
     const long dim = static_cast<long>(dim_value.get<double>());
 
     json j = json::object();
@@ -118,6 +121,11 @@ class Text_parser {
   // '[' item (',' item)* ']' where an item is a number or a list; "[a, b | c]" (one bar) becomes
   // {"a": [a, b], "b": c} for the rows of an H-polytope.
   json list() {
+    if (++depth_ > max_depth) fail("lists nested more than " + std::to_string(max_depth) + " levels deep");
+    struct Leave {
+      int& d;
+      ~Leave() { --d; }
+    } leave{depth_};
     expect('[');
     json items = json::array();
     json bar_value;
@@ -208,9 +216,11 @@ class Text_parser {
     throw InputError(where_ + ": " + position(at) + ": " + what);
   }
 
+  static constexpr int max_depth = 16;  // the deepest layout (H-polytope rows) needs 2
   const std::string& s_;
   std::string where_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 }  // namespace

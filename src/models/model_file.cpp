@@ -7,7 +7,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/json_text.hpp"
+#include "models/expression.hpp"
 #include "sets/core/error.hpp"
+#include "sets/core/printable.hpp"
 
 namespace sets {
 
@@ -59,7 +62,7 @@ NamedTexts read_texts(const ojson& j, const char* key, const std::string& source
   if (!o.is_object()) fail(source, std::string("field \"") + key + "\" must be an object");
   for (auto it = o.begin(); it != o.end(); ++it) {
     if (!it.value().is_string())
-      fail(source, std::string("field \"") + key + "." + it.key() + "\" must be a string");
+      fail(source, std::string("field \"") + key + "." + printable(it.key(), 100) + "\" must be a string");
     out.emplace_back(it.key(), it.value().get<std::string>());
   }
   return out;
@@ -73,26 +76,8 @@ double number(const ojson& v, const std::string& source, const std::string& fiel
 }  // namespace
 
 ModelFile parse_model(const std::string& text, const std::string& source) {
-  ojson j;
-  try {
-    j = ojson::parse(text);
-  } catch (const ojson::parse_error& e) {
-    // nlohmann gives a byte offset; an engineer wants line and column.
-    std::size_t line = 1, column = 1;
-    const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    std::string msg = e.what();
-    if (auto p = msg.find("parse error"); p != std::string::npos) msg = msg.substr(p);
-    fail(source, "malformed JSON at line " + std::to_string(line) + ", column " +
-                     std::to_string(column) + ": " + msg);
-  }
+  // Malformed JSON, 1e400 and absurd nesting: InputError with line and column.
+  ojson j = parse_ordered_json_text(text, source);
   if (!j.is_object()) fail(source, "the model must be a JSON object");
   ModelFile m;
   m.source = source;
@@ -102,7 +87,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
-    if (!ok) fail(source, "unknown field \"" + it.key() + "\"");
+    if (!ok) fail(source, "unknown field \"" + printable(it.key(), 100) + "\"");
   }
   if (j.contains("format_version") && number(j["format_version"], source, "format_version") != 1)
     fail(source, "unsupported format_version (this reader knows version 1)");
@@ -127,14 +112,14 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
     for (auto it = ps.begin(); it != ps.end(); ++it) {
       ModelParameter p;
       p.name = it.key();
-      const std::string f = "parameters." + p.name;
+      const std::string f = "parameters." + printable(p.name, 100);
       if (it.value().is_number()) {
         p.value = it.value().get<double>();
       } else if (it.value().is_object()) {
         const auto& o = it.value();
         for (auto k = o.begin(); k != o.end(); ++k)
           if (k.key() != "value" && k.key() != "fixed" && k.key() != "min" && k.key() != "max")
-            fail(source, "unknown field \"" + f + "." + k.key() + "\"");
+            fail(source, "unknown field \"" + f + "." + printable(k.key(), 100) + "\"");
         if (!o.contains("value")) fail(source, "missing field \"" + f + ".value\"");
         p.value = number(o["value"], source, f + ".value");
         if (o.contains("fixed")) {
@@ -160,7 +145,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
     else if (it.value().is_string())
       s.initial_column = it.value().get<std::string>();
     else
-      fail(source, "field \"states." + s.name + "\" must be a number or a column name");
+      fail(source, "field \"states." + printable(s.name, 100) + "\" must be a number or a column name");
     m.states.push_back(s);
   }
   m.signals = read_texts(j, "signals", source, false);
@@ -169,15 +154,17 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   m.outputs = read_texts(j, "outputs", source, true);
   if (m.outputs.empty()) fail(source, "field \"outputs\" is empty");
   for (const auto& s : m.states)
-    if (!m.derivative(s.name)) fail(source, "state \"" + s.name + "\" has no entry in \"derivatives\"");
+    if (!m.derivative(s.name)) fail(source, "state \"" + printable(s.name, 100) + "\" has no entry in \"derivatives\"");
   for (const auto& d : m.derivatives) {
     bool found = false;
     for (const auto& s : m.states) found = found || s.name == d.first;
-    if (!found) fail(source, "\"derivatives." + d.first + "\" is not a state");
+    if (!found) fail(source, "\"derivatives." + printable(d.first, 100) + "\" is not a state");
   }
   // One name, one meaning.
   std::vector<std::string> names = {"t", "Ts"};
   auto add = [&](const std::string& n, const char* where) {
+    if (const std::string problem = symbol_name_problem(n); !problem.empty())
+      fail(source, std::string("field \"") + where + "\": " + problem);
     for (const auto& x : names)
       if (x == n) fail(source, "symbol \"" + n + "\" in \"" + where + "\" is defined twice");
     names.push_back(n);
@@ -188,7 +175,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   for (const auto& e : m.signals) add(e.first, "signals");
   for (const auto& e : m.sampled) add(e.first, "sampled");
   for (const auto& o : m.outputs)
-    if (!m.has_symbol(o.first)) fail(source, "unknown symbol \"" + o.first + "\" in \"outputs\"");
+    if (!m.has_symbol(o.first)) fail(source, "unknown symbol \"" + printable(o.first, 100) + "\" in \"outputs\"");
   return m;
 }
 

@@ -51,7 +51,7 @@ TEST(ModelFile, MalformedJsonNamesLineAndColumn) {
   const auto msg = message_of([&] { parse_model(text, "m.json"); });
   EXPECT_NE(msg.find("m.json"), std::string::npos) << msg;
   EXPECT_NE(msg.find("line 3"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("line 3, column 12"), std::string::npos) << msg;  // end of the offending token
+  EXPECT_NE(msg.find("line 3, column 10"), std::string::npos) << msg;  // start of the offending token
 }
 
 TEST(ModelFile, RoundTripKeepsEverything) {

@@ -15,6 +15,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/domains/set_io.hpp"
+#include "support/messages.hpp"
 
 namespace {
 
@@ -154,4 +155,33 @@ TEST(SetIo, ProjectionPolygonsContainTheProjectedSets) {
   const std::string text = os.str();
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), PZ.cols() + 2);  // closed + blank line
   EXPECT_THROW(sets::projection_polygon(Z, 0, 0), sets::InputError);
+}
+
+TEST(SetIo, HostileJsonAndTextAreInputErrorsWithTheirPlace) {
+  using sets::test::contains;
+  using sets::test::input_error_of;
+  // 1e400 escaped as nlohmann's own exception, without file, line or column.
+  std::string m = input_error_of([] { sets::parse_set_json("{\"type\": \"box\",\n \"lower\": [1e400], \"upper\": [1]}", "s.json"); });
+  EXPECT_TRUE(contains(m, "s.json: malformed JSON at line 2, column 12")) << m;
+  // A dimension that would allocate exabytes before a row is looked at.
+  m = input_error_of([] { sets::parse_set_json(R"({"type": "hpolytope", "dimension": 1000000000000000000, "A": [[1]], "b": [1]})", "s.json"); });
+  EXPECT_TRUE(contains(m, "s.json: field 'dimension': expected a whole number from 0 to 100000")) << m;
+  m = input_error_of([] { sets::parse_set_json(R"({"type": "hpolytope", "dimension": 2, "A": [[1, 0], [1]], "b": [1, 2]})", "s.json"); });
+  EXPECT_TRUE(contains(m, "field 'A[1]': has 1 entries, expected 2")) << m;
+  // The offending value is described, not dumped (a dump of a huge value was the message).
+  m = input_error_of([] { sets::parse_set_json(R"({"type": "box", "lower": [{"a": [1, 2, 3]}], "upper": [1]})", "s.json"); });
+  EXPECT_TRUE(contains(m, "field 'lower[0]': expected a number (or \"inf\", \"-inf\"), got object")) << m;
+  m = input_error_of([] { sets::parse_set_json("{\"type\": \"box\", \"lower\": [\"\x1b[2J\"], \"upper\": [1]}", "s.json"); });
+  EXPECT_FALSE(sets::test::has_raw_control_bytes(m)) << m;
+  // Found by fuzz_set_json: the type was echoed raw.
+  m = input_error_of([] { sets::parse_set_json("{\"type\": \"hp\x7flytope\"}", "s.json"); });
+  EXPECT_TRUE(contains(m, "unknown set type 'hp\\x7flytope'")) << m;
+  // Found by fuzz_set_text: a 0-dimensional ellipsoid took the largest entry of an empty matrix
+  // (an Eigen assertion; a read past the end without assertions).
+  EXPECT_EQ(std::get<sets::Ellipsoid>(sets::from_string("Ellipsoid(dim=0, center=[], shape=[])")).dimension(), 0);
+  // dim = 1e300 was cast to long: undefined behaviour.
+  m = input_error_of([] { sets::from_string("Box(dim=1e300, [[0, 1]])", "s.txt"); });
+  EXPECT_TRUE(contains(m, "s.txt: line 1, column 9: 'dim' must be a whole number from 0 to 100000")) << m;
+  m = input_error_of([] { sets::from_string("Box(dim=1, " + std::string(100000, '[') + "0" + std::string(100000, ']') + ")", "s.txt"); });
+  EXPECT_TRUE(contains(m, "lists nested more than 16 levels deep")) << m;
 }

@@ -29,14 +29,21 @@ namespace sets {
 
 using AnySet = std::variant<IntervalVector, Ellipsoid, Zonotope, HPolytope, VPolytope>;
 
+/// Readers refuse a larger dimension before allocating anything for it (an H-polytope without
+/// rows states its dimension with nothing else to check it against).
+inline constexpr long max_set_dimension = 100000;
+
 nlohmann::json to_json(const AnySet& set);
 /// Throws InputError naming `where` (a file name or "JSON") and the offending field.
 AnySet from_json(const nlohmann::json& j, const std::string& where = "JSON");
 
 /// Writes the set to `path` completely or not at all (temporary file, then rename).
 void save_json(const std::string& path, const AnySet& set);
-/// Reads a set; InputError with the file name (and line/column for malformed JSON).
+/// Reads a set; InputError with the file name (and line/column for malformed JSON or a number
+/// outside the range of double, such as 1e400).
 AnySet load_json(const std::string& path);
+/// The same from JSON text; `where` names it in messages.
+AnySet parse_set_json(const std::string& text, const std::string& where = "JSON");
 
 /// Convex polygon (2 x k, counter-clockwise) that contains the projection of the set onto
 /// coordinates (i, j). Exact shadow (up to rounding) for zonotopes, V-polytopes and boxes; a

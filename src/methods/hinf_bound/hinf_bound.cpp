@@ -379,18 +379,6 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
 }
 
 // ------------------------------------------------------------------ rational model
-RationalModel hinf_example_system() {
-  const double r1 = 0.97, w1 = 0.6, r2 = 0.8, w2 = 0.9;
-  const Eigen::Vector3d d1(1, -2 * r1 * std::cos(w1), r1 * r1), d2(1, -2 * r2 * std::cos(w2), r2 * r2);
-  RationalModel G;
-  G.a = Eigen::VectorXd::Zero(5);
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) G.a[i + k] += d1[i] * d2[k];  // the product of the two quadratics
-  G.b = Eigen::VectorXd::Zero(3);
-  G.b << 0, 0.05, 0.025;
-  return G;
-}
-
 std::complex<double> RationalModel::operator()(double w) const { return poly_at(b, w) / poly_at(a, w); }
 
 std::complex<double> RationalModel::derivative(double w) const {
@@ -742,6 +730,17 @@ HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eig
   r.bound = error_bound(r.set, r.nominal.model, r.weight.h);
   r.unweighted = error_bound(r.set, r.nominal.model, Eigen::VectorXd::Ones(1));
   return r;
+}
+
+Eigen::VectorXd midpoint_grid(int points, double w_min, double w_max) {
+  Eigen::VectorXd grid(points);
+  for (int j = 0; j < points; ++j) grid[j] = w_min + (w_max - w_min) * (j + 0.5) / points;
+  return grid;
+}
+
+HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure, const HinfBoundOptions& options) {
+  return hinf_bound(data.u, data.y, structure.basis, structure.order, structure.grid, structure.priors, options,
+                    data.r.size() ? &data.r : nullptr);
 }
 
 double weighted_error(const std::function<std::complex<double>(double)>& G, const RationalModel& nominal,

@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/json_text.hpp"
 #include "sets/core/error.hpp"
 
 namespace sets {
@@ -286,21 +287,9 @@ void LpvModelStructure::validate() const {
   check(b, "b", 0);
 }
 
-LpvModelStructure LpvModelStructure::cerone_regruto_example() {
-  LpvModelStructure m;
-  m.alpha = 1;
-  m.a = {{BasisFunction::power(0, 1)}, {BasisFunction(), BasisFunction::power(0, 2)}};
-  m.b = {{}, {BasisFunction()}, {BasisFunction::power(0, 1), BasisFunction::power(0, 2)}};
-  return m;
-}
-
 LpvModelStructure parse_lpv_structure_json(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
+  // Malformed JSON and numbers beyond double (1e400) are InputErrors with line and column.
+  nlohmann::json j = parse_json_text(text, source);
   if (!j.is_object()) throw InputError(source + ": expected a JSON object with fields alpha, a, b");
   LpvModelStructure m;
   if (j.contains("alpha")) {

@@ -16,17 +16,6 @@
 
 namespace sets {
 
-StateSpaceModel farah_example_system() {
-  StateSpaceModel s;
-  s.A.resize(3, 3);
-  s.A << 0.2, 0, -1, 1, 0.3, 5, -2, -0.4, -0.6;
-  s.B.resize(3, 2);
-  s.B << 1, 0, 0, 2, 1, -1;
-  s.C.resize(2, 3);
-  s.C << 5, 0, 1, -3, 1, 1;
-  s.D = Eigen::MatrixXd::Zero(2, 2);
-  return s;
-}
 namespace {
 
 int find_row(const std::vector<ObservabilityRow>& rows, ObservabilityRow r) {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/examples/cerone_regruto.hpp"
 #include "sets/methods/lpv_pui/lpv_model.hpp"
 
 namespace {
@@ -156,7 +157,7 @@ TEST(LpvPui, TrueThetaInsideEveryPuiOver500RandomLpvSystems) {
 }
 
 TEST(LpvPui, RegressionOfThePaperStructureMatchesHandComputedIntervals) {
-  const auto m = LpvModelStructure::cerone_regruto_example();
+  const auto m = sets::cerone_regruto::structure();
   EXPECT_EQ(m.num_parameters(), 6);
   EXPECT_EQ(m.first_regression(), 2);
   LpvMeasurements d;
@@ -260,9 +261,8 @@ TEST(LpvPui, BadInputIsReportedWithSampleAndField) {
 
 TEST(LpvPui, DataThatNoThetaExplainsAreReportedWithTheirSamples) {
   // Section IV's system, 30 samples, bounds 1e-3; sample 15's output is off by 0.5.
-  const auto m = LpvModelStructure::cerone_regruto_example();
-  Eigen::VectorXd theta(6);
-  theta << 0.5, -0.2, 0.3, 0.1, 1.0, 0.2;
+  const auto m = sets::cerone_regruto::structure();
+  const Eigen::VectorXd theta = sets::cerone_regruto::true_theta();
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> U(-1, 1);
   const int T = 30;
@@ -293,9 +293,8 @@ TEST(LpvPui, DataThatNoThetaExplainsAreReportedWithTheirSamples) {
 
 TEST(LpvPui, WorkingSetLpsGiveTheSamePuisAsTheFullLps) {
   // pui()'s constraint generation must not change the answer, only the time.
-  const auto m = LpvModelStructure::cerone_regruto_example();
-  Eigen::VectorXd theta(6);
-  theta << 0.5, -0.2, 0.3, 0.1, 1.0, 0.2;
+  const auto m = sets::cerone_regruto::structure();
+  const Eigen::VectorXd theta = sets::cerone_regruto::true_theta();
   for (double delta : {1e-3, 3e-2}) {
     std::mt19937_64 rng(static_cast<std::uint64_t>(delta * 1e6));
     std::uniform_real_distribution<double> U(-1, 1);

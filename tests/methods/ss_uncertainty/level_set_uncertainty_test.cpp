@@ -9,6 +9,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 
 namespace {
@@ -75,7 +76,7 @@ TEST(LevelSetUncertainty, FpsLeavesOutRowsWithoutParametersAndReportsThem) {
 // regression (built on the exact canonical states) contains the true parameters; and the true
 // parameters inside the ellipsoid lie inside each of its pair projections.
 RC_GTEST_PROP(LevelSetUncertainty, BoundedNoiseFpsContainsTruth, ()) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   const sets::CanonicalStructure st(rows, 2, 2, false);
   const auto canon = sets::canonical_form(sys, rows);

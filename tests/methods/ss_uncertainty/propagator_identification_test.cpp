@@ -3,6 +3,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 
 namespace {
@@ -19,7 +20,7 @@ Eigen::MatrixXd binary_input(int N, int nu, unsigned seed) {
 }
 
 TEST(PropagatorIdentification, CanonicalFormOfThePrintedSystem) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   ASSERT_EQ(rows.size(), 3u);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(rows[k], (sets::ObservabilityRow{k, 0}));
@@ -44,7 +45,7 @@ TEST(PropagatorIdentification, CanonicalFormOfThePrintedSystem) {
 }
 
 TEST(PropagatorIdentification, NoiseFreeDataReproduceTheCanonicalParameters) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto u = binary_input(1000, 2, 7);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -66,7 +67,7 @@ TEST(PropagatorIdentification, NoiseFreeDataReproduceTheCanonicalParameters) {
 }
 
 TEST(PropagatorIdentification, EstimatedDIsNearZeroForNoiseFreeData) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto u = binary_input(800, 2, 3);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -79,7 +80,7 @@ TEST(PropagatorIdentification, EstimatedDIsNearZeroForNoiseFreeData) {
 }
 
 TEST(PropagatorIdentification, UserRowsGiveAnotherCanonicalForm) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto u = binary_input(1000, 2, 11);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -93,7 +94,7 @@ TEST(PropagatorIdentification, UserRowsGiveAnotherCanonicalForm) {
 }
 
 TEST(PropagatorIdentification, BadInputIsRejected) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto u = binary_input(600, 2, 5);
   const auto y = sets::simulate(sys, u);
   sets::PropagatorOptions o;
@@ -142,7 +143,7 @@ namespace {
 // its standard deviation of the true canonical value (40 runs keep the test fast; the app runs
 // 1000 and shows |bias|/std of at most about 0.12).
 TEST(PropagatorIdentification, MonteCarloMeansAgreeWithTheTrueValues) {
-  const auto sys = sets::farah_example_system();
+  const auto sys = sets::farah::system();
   const auto rows = sets::select_rows(sys.A, sys.C, sets::RowSelection::output_major);
   const auto truth = sets::CanonicalStructure(rows, 2, 2, false).to_parameters(sets::canonical_form(sys, rows));
   const int R = 40;

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 
 namespace {
@@ -14,7 +15,7 @@ void example_data(unsigned seed, Eigen::MatrixXd& u, Eigen::MatrixXd& y) {
   std::normal_distribution<double> g;
   u.resize(1000, 2);
   for (int t = 0; t < u.rows(); ++t) u.row(t) << (coin(rng) ? 1.0 : -1.0), (coin(rng) ? 1.0 : -1.0);
-  y = sets::simulate(sets::farah_example_system(), u);
+  y = sets::simulate(sets::farah::system(), u);
   for (int j = 0; j < 2; ++j) {
     const double sd = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean() / 100.0);
     for (int t = 0; t < y.rows(); ++t) y(t, j) += sd * g(rng);

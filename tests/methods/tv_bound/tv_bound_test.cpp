@@ -84,7 +84,7 @@ TEST(TvBound, WindowNormOfKnownSignals) {
 }
 
 TEST(TvBound, BadWindowsAreRejected) {
-  EXPECT_THROW(sets::WindowNorm(Eigen::VectorXd()), sets::InputError);
+  EXPECT_THROW((void)sets::WindowNorm(Eigen::VectorXd()), sets::InputError);  // (void): not a declaration
   EXPECT_THROW(sets::WindowNorm::pulse(0, 1.0), sets::InputError);
   EXPECT_THROW(sets::WindowNorm(Eigen::Vector3d(0.5, 0.6, 0.1)), sets::InputError);  // increases at 1
   EXPECT_THROW(sets::WindowNorm(Eigen::Vector2d(0, 0)), sets::InputError);           // identically zero
@@ -365,7 +365,7 @@ TEST(TvBound, BadInputIsRejectedWithClearErrors) {
   expect_error_naming([&] { sets::linf_bound({reg, Eigen::MatrixXd::Zero(11, 1), {}}); }, "0 windows given for 1");
   expect_error_naming([&] { sets::linf_bound({reg, Eigen::MatrixXd::Zero(11, 1), {w, w}}); }, "2 windows given");
   // An empty window and a window that is not monotone decreasing.
-  expect_error_naming([] { sets::WindowNorm(Eigen::VectorXd()); }, "window is empty");
+  expect_error_naming([] { (void)sets::WindowNorm(Eigen::VectorXd()); }, "window is empty");
   expect_error_naming([] { sets::WindowNorm::pulse(0, 1.0); }, "length 0");
   expect_error_naming([] { sets::WindowNorm(Eigen::Vector3d(0.5, 0.4, 0.45)); }, "increases at sample 2");
   // Options of the l-inf method.

@@ -127,12 +127,6 @@ struct RationalModel {
   std::string to_string() const;
 };
 
-/// The built-in example's true system (app, bench and tests), order 4:
-/// G0(z) = 0.05 z^-1 (1 + 0.5 z^-1) / [(1 - 2 r1 cos(w1) z^-1 + r1^2 z^-2)(1 - 2 r2 cos(w2) z^-1 + r2^2 z^-2)]
-/// with r1 = 0.97, w1 = 0.6 rad/sample (a lightly damped resonance, damping ratio ~0.05) and
-/// r2 = 0.8, w2 = 0.9 rad/sample (a well damped second mode).
-RationalModel hinf_example_system();
-
 struct NominalOptions {
   int order = 2;                // denominator and numerator degree
   int polygon_sides = 16;       // K: |z| <= t replaced by K half-planes
@@ -204,6 +198,27 @@ HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eig
                            const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
                            const HinfPriors& priors, const HinfBoundOptions& options = {},
                            const Eigen::VectorXd* instrument = nullptr);
+
+/// Time-domain data of one experiment: u and y; r (empty, or of the same length) is a reference
+/// signal used as instrumental variables (closed-loop data).
+struct HinfData {
+  Eigen::VectorXd u, y, r;
+};
+
+/// What is assumed of the true system: the basis and its number of functions n, the priors, and
+/// the frequency grid of the per-frequency regions (inside [0, pi], increasing).
+struct HinfStructure {
+  OrthonormalBasis basis = OrthonormalBasis::fir();
+  int order = 0;
+  HinfPriors priors;
+  Eigen::VectorXd grid;
+};
+
+/// `points` frequencies at the midpoints of equal cells of [w_min, w_max].
+Eigen::VectorXd midpoint_grid(int points, double w_min, double w_max);
+
+/// The method's entry point: all four steps on one data set (the same as the call above).
+HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure, const HinfBoundOptions& options = {});
 
 /// max over the dense grid of |W(e^iw) (G(e^iw) - Ghat(e^iw))|, W = 1/h.
 double weighted_error(const std::function<std::complex<double>(double)>& G, const RationalModel& nominal,

@@ -86,9 +86,6 @@ struct LpvModelStructure {
   std::vector<std::string> parameter_names() const;
   /// Throws InputError if alpha < 1, no parameter, or a basis uses a component >= alpha.
   void validate() const;
-
-  /// Section IV's system: a1 = a11 l; a2 = a21 + a22 l^2; b1 = b11; b2 = b21 l + b22 l^2.
-  static LpvModelStructure cerone_regruto_example();
 };
 
 /// Parses a structure from JSON text:

@@ -23,10 +23,6 @@ struct StateSpaceModel {
   Eigen::MatrixXd A, B, C, D;
 };
 
-/// The example system of Farah et al., Section V: the printed A, B, C (3 states, 2 inputs,
-/// 2 outputs) with D = 0. Used by sets-ss-uncertainty, its benchmark and its tests.
-StateSpaceModel farah_example_system();
-
 /// Simulates x(t+1) = A x(t) + B u(t), y(t) = C x(t) + D u(t) from x(0) = x0 (zero if empty);
 /// u is N x nu, the result N x ny (time along rows).
 Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::MatrixXd& u,
