@@ -121,7 +121,9 @@ void print_suite(const std::string& kind, const std::string& plant, int count, u
   const auto results = kind == "fixed" ? run_fixed_suite(plant, so) : run_random_suite(seed, count, so);
   if (kind == "fixed" && !plant.empty()) {
     const SyntheticPlant p = synthetic_plant(plant);
-    std::cerr << diagnosis_text(diagnose(p.nominal, p.estimation, &p.validation, options));
+    DiagnosisOptions verbose = options;
+    if (!quiet) verbose.progress = [](const std::string& s) { std::cerr << "[sets-diagnose] " << s << std::endl; };
+    std::cerr << diagnosis_text(diagnose(p.nominal, p.estimation, &p.validation, verbose));
   }
   std::cout << suite_report(results);
 }

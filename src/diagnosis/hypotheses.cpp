@@ -57,7 +57,7 @@ Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::V
     for (std::size_t k = 0; k < cand.parameters.size(); ++k) ks.emplace_back(cand.parameters[k], cand.scales[k]);
     CalibrationOptions o;
     o.scale = scales_for(cand.model, fr, ks);
-    o.max_evaluations = 30 * static_cast<int>(fr.size() + 1);
+    o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
     std::vector<Eigen::VectorXd> from = starts;
     if (from.empty()) from.push_back(s.parameter_values());
     if (cand.restart) {  // from the file's values: the calibrated nominal may be far off
@@ -67,12 +67,16 @@ Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::V
           p[static_cast<Eigen::Index>(i)] = orig->value;
       from.push_back(p);
     }
+    // Multi-start (the screening's best grid points, its least-squares step, the equation-error
+    // estimate); each with the budget of 80 Jacobians: with 30 the Stribeck law (three parameters
+    // on a rough cost) stopped at a third of the misfit reduction it reaches.
     CalibrationResult best;
     for (const auto& p : from) {
       const auto r = calibrate(s, p, fr, o);
       if (r.ok && (!best.ok || r.cost < best.cost)) best = r;
     }
     if (!best.ok) return t;
+
     t.ok = true;
     t.cost = best.cost;
     t.model = cand.model;
@@ -258,6 +262,18 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
       trials[i].rules = check_rules(evidence(trials[i]), rules);
       trials[i].accepted = passes(trials[i].rules);
       if (trials[i].accepted) ok.push_back(i);
+    }
+    for (std::size_t i = 1; i < trials.size(); ++i) {
+      const Trial& t = trials[i];
+      std::ostringstream line;
+      line << "    " << list[i - 1]->candidate.effect << " (" << list[i - 1]->candidate.equation << "): ";
+      if (!t.ok) line << "could not be calibrated";
+      else {
+        line << "misfit " << fixed1(100 * t.cost / std::max(cost_cur, 1e-300)) << " % of the current model's";
+        if (c.validation) line << ", validation " << fixed1(100 * t.cost_val / std::max(cost_cur_val, 1e-300)) << " %";
+        line << (t.accepted ? ", passes every rule" : ", fails a rule");
+      }
+      c.say(line.str());
     }
     if (ok.empty()) break;
     // The sparsest explanation: misfit (validation when there is one) x tolerance^parameters.
