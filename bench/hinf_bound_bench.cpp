@@ -16,7 +16,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-sets::RationalModel true_system() { return sets::hakvoort::system(); }
+sets::TransferFunction true_system() { return sets::hakvoort::system(); }
 
 // u uniform in [-1, 1] from 3000 samples before the record; noise e (Gaussian, or uniform with
 // |e| <= 0.02) through 1/(1 - 0.7 q^-1), as in the app.
@@ -118,7 +118,7 @@ void BM_WeightedErrorCheck(benchmark::State& state) {
   const auto& S = stochastic_set();
   const sets::NominalFit f = sets::fit_nominal(S);
   const sets::WeightFit W = sets::fit_weight(S.frequencies, sets::additive_error(S, f.model));
-  const sets::RationalModel G0 = true_system();
+  const sets::TransferFunction G0 = true_system();
   for (auto _ : state) {
     const double e = sets::weighted_error([&](double w) { return G0(w); }, f.model, W.h);
     benchmark::DoNotOptimize(e);

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "sets/numeric/glpk_environment.hpp"
+
 namespace sets::app {
 
 struct RunFailure {
@@ -26,6 +28,7 @@ inline std::optional<RunFailure> run_parallel(std::size_t count, unsigned thread
   std::vector<std::exception_ptr> errors(count);
   std::atomic<bool> failed{false};
   auto worker = [&] {
+    const GlpkThreadEnvironment glpk;  // freed when the worker ends
     for (std::size_t k; !failed && (k = next++) < count;) {
       try {
         run(k);

@@ -57,11 +57,15 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "threads for the competing hypotheses (with --suite: plants at once)")
       ->check(CLI::Range(1, 64));
   app.add_flag("--quiet", quiet, "no progress messages on stderr");
+  std::string intersample;
+  app.add_option("--intersample", intersample,
+                 "every input between samples: zoh (held), foh (linear) or bl (band-limited); overrides the model file");
   if (const auto code = cli.parse(argc, argv)) return *code;
   return cli.run([&] {
     DiagnosisOptions opt;
     opt.threads = threads;
     if (no_floor) opt.noise_floor_factor = 0;
+    if (!intersample.empty()) opt.intersample = parse_intersample(intersample, "--intersample");
     if (suite->count() > 0) {
       if (suite_kind.empty()) suite_kind = "fixed";
       if (suite_kind != "fixed" && suite_kind != "random")

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
                                                      : sets::OrthonormalBasis::kautz(std::polar(pole, pole_angle));
     s.structure.grid = sets::midpoint_grid(grid_points, w_min, w_max);
     sets::check_frequency_grid(s.structure.grid);
-    const sets::RationalModel G0 = sets::hakvoort::system();
+    const sets::TransferFunction G0 = sets::hakvoort::system();
     const double M = p.M;
     p.M = sets::HinfPriors{}.M;
     sets::check_priors(p);  // rho first: the derived M needs a valid rho

@@ -38,7 +38,7 @@ std::vector<double> std_vector(const Eigen::VectorXd& v) { return {v.data(), v.d
 
 }  // namespace
 
-Runs run_all(const Settings& s, const sets::HinfData& data, const sets::RationalModel& G0) {
+Runs run_all(const Settings& s, const sets::HinfData& data, const sets::TransferFunction& G0) {
   std::mt19937_64 rng(s.seed);
   Runs out;
   sets::HinfData d = data;
@@ -183,7 +183,7 @@ sets::app::Json results_json(const Settings& s, const Runs& r, int samples, doub
   return j;
 }
 
-void plot(const std::string& png, const sets::HinfBoundResult& R, const sets::RationalModel* G0) {
+void plot(const std::string& png, const sets::HinfBoundResult& R, const sets::TransferFunction* G0) {
   using sets::app::gnuplot_quote;
   sets::app::render_png(png, "set terminal pngcairo size 1400,600 noenhanced", [&](const fs::path& dir, const std::string&) {
     const auto& S = R.set;

@@ -27,7 +27,7 @@ struct Runs {
 
 /// Built-in: `settings.runs` data sets of G0 from one generator; otherwise `data` once. Counts
 /// where G0 falls outside the bounds (built-in only).
-Runs run_all(const Settings& settings, const sets::HinfData& data, const sets::RationalModel& G0);
+Runs run_all(const Settings& settings, const sets::HinfData& data, const sets::TransferFunction& G0);
 
 /// The per-frequency table (unless quiet), the bounds, means, timing and Monte Carlo rates.
 void print_results(const Settings& settings, const Runs& runs, double cpu_per_run);
@@ -35,4 +35,4 @@ void print_results(const Settings& settings, const Runs& runs, double cpu_per_ru
 sets::app::Json results_json(const Settings& settings, const Runs& runs, int samples, double cpu_per_run);
 
 /// Regions, central estimate, nominal model, delta and the weight against frequency (G0 if given).
-void plot(const std::string& png, const sets::HinfBoundResult& R, const sets::RationalModel* G0);
+void plot(const std::string& png, const sets::HinfBoundResult& R, const sets::TransferFunction* G0);

@@ -25,10 +25,14 @@
 
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
+#include "sets/models/transfer_function.hpp"
 #include "sets/models/time_varying_model.hpp"
 
+#include "sets/data/intersample.hpp"
+#include "sets/data/noise_level.hpp"
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
+#include "sets/data/spectrum.hpp"
 
 #include "sets/methods/lpv_pui/lpv_model.hpp"
 

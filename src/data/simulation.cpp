@@ -12,6 +12,7 @@
 #include "models/expression.hpp"
 #include "sets/core/error.hpp"
 #include "sets/core/printable.hpp"
+#include "sets/data/intersample.hpp"
 
 namespace sets {
 
@@ -19,14 +20,6 @@ Eigen::VectorXd SimulationResult::series(const std::string& name) const {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return values.col(static_cast<Eigen::Index>(i));
   throw InputError("no recorded signal \"" + name + "\"");
-}
-
-double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y) {
-  if (y.size() < 5) return 0;
-  std::vector<double> d;
-  for (Eigen::Index k = 2; k < y.size(); ++k) d.push_back(std::abs(y[k] - 2 * y[k - 1] + y[k - 2]));
-  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
-  return d[d.size() / 2] / 0.6745 / std::sqrt(6.0);
 }
 
 double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat) {
@@ -59,7 +52,8 @@ struct Simulator::Impl {
   std::map<int, std::string> name_of_slot;
   int t_slot = 0, ts_slot = 0;
   std::vector<int> param_slots, input_slots, state_slots, signal_slots, sampled_slots;
-  std::vector<std::vector<double>> input_data;
+  std::vector<IntersampleInput> input_data;  // each input inside every sample interval
+  bool inputs_move = false;                  // some input is not held (foh, bl)
   std::vector<double> initial_state;
   std::vector<mu::Parser> signal_expr, sampled_expr, deriv_expr, output_expr;
   std::vector<int> deriv_of_state;  // derivative expression index for each state
@@ -102,6 +96,12 @@ struct Simulator::Impl {
   void eval_signals() {
     for (std::size_t i = 0; i < signal_expr.size(); ++i)
       slots[static_cast<std::size_t>(signal_slots[i])] = signal_expr[i].Eval();
+  }
+
+  // Inputs at stage j (0 .. 2 substeps) of sample interval k.
+  void set_inputs(std::size_t k, int j) {
+    for (std::size_t i = 0; i < input_slots.size(); ++i)
+      slots[static_cast<std::size_t>(input_slots[i])] = input_data[i].at(k, j);
   }
 
   void derivative(const double* x, double tt, double* dx) {
@@ -155,7 +155,9 @@ Simulator::Simulator(const ModelFile& model, const Recording& data, SimulationOp
   }
   for (const auto& [sym, col] : model.inputs) {
     I.input_slots.push_back(I.new_slot(sym));
-    I.input_data.push_back(data.column(col));
+    const Intersample mode = declared_intersample(model, sym);
+    I.input_data.emplace_back(data.column(col), mode, options.substeps);
+    I.inputs_move = I.inputs_move || mode != Intersample::zoh;
   }
   for (const auto& s : model.states) {
     I.state_slots.push_back(I.new_slot(s.name));
@@ -257,7 +259,7 @@ static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixX
       for (std::size_t i = 0; i < I.param_slots.size(); ++i)
         I.slots[static_cast<std::size_t>(I.param_slots[i])] = (*schedule)(k, static_cast<Eigen::Index>(i));
     for (std::size_t i = 0; i < I.input_slots.size(); ++i)
-      I.slots[static_cast<std::size_t>(I.input_slots[i])] = I.input_data[i][static_cast<std::size_t>(k)];
+      I.slots[static_cast<std::size_t>(I.input_slots[i])] = I.input_data[i].at(static_cast<std::size_t>(k), 0);
     for (std::size_t i = 0; i < ns; ++i) I.slots[static_cast<std::size_t>(I.state_slots[i])] = x[i];
     // prev() values: sample k - n, or sample 0 when there is none yet.
     for (const auto& pr : I.prevs) {
@@ -289,13 +291,18 @@ static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixX
     if (k + 1 == N) break;
     const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
     double tt = tk;
+    const auto kk = static_cast<std::size_t>(k);
     for (int s = 0; s < I.options.substeps; ++s) {
+      // Stage inputs: u at t, t + h/2, t + h of the substep as each input's intersample mode gives them.
+      if (I.inputs_move) I.set_inputs(kk, 2 * s);
       I.derivative(x.data(), tt, k1.data());
       for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + 0.5 * h * k1[i];
+      if (I.inputs_move) I.set_inputs(kk, 2 * s + 1);
       I.derivative(xt.data(), tt + 0.5 * h, k2.data());
       for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + 0.5 * h * k2[i];
       I.derivative(xt.data(), tt + 0.5 * h, k3.data());
       for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + h * k3[i];
+      if (I.inputs_move) I.set_inputs(kk, 2 * s + 2);
       I.derivative(xt.data(), tt + h, k4.data());
       for (std::size_t i = 0; i < ns; ++i) x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
       tt += h;

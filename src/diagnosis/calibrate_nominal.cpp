@@ -130,17 +130,4 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   return n;
 }
 
-NoiseFloor noise_floor(const Eigen::MatrixXd& Y) {
-  NoiseFloor f;
-  const Eigen::Index N = Y.rows();
-  for (Eigen::Index j = 0; j < Y.cols(); ++j) {
-    const double s = noise_sigma(Y.col(j));
-    f.sigma.push_back(s);
-    const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
-    if (den > 0) f.cost += s * s * static_cast<double>(N) / den;
-  }
-  f.note = "noise sigma per output = MAD of the measured second difference / 0.6745 / sqrt(6)";
-  return f;
-}
-
 }  // namespace sets::diagnosis_stage

@@ -57,7 +57,10 @@ void conclude(Diagnosis& d) {
 
 }  // namespace
 
-Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording* val, const DiagnosisOptions& options) {
+Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Recording* val, const DiagnosisOptions& options) {
+  // Every input's intersample behaviour written out (the file's, or the override): the fits are
+  // made under it and the augmented model file records it.
+  const ModelFile model = with_intersample(model_file, options.intersample);
   const auto t_start = std::chrono::steady_clock::now();
   auto say = [&](const std::string& s) {
     if (!options.progress) return;
@@ -78,10 +81,12 @@ Diagnosis diagnose(const ModelFile& model, const Recording& est, const Recording
   const Context c{model, est, val, opt, exact, fast, exact_val.get(), say};
 
   const NominalFit nominal = calibrate_nominal(c, d);                          // 1.
-  const NoiseFloor noise = noise_floor(exact.measured());
+  const NoiseFloor noise = noise_floor(c, nominal, d);
   d.noise_sigma = noise.sigma;
-  d.noise_note = noise.note;
+  for (const auto& n : d.noise)
+    d.noise_note += (d.noise_note.empty() ? "" : "; ") + n.output + ": " + noise_method_name(n.estimate.method);
   d.nominal_tests = test_residual(exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  test_data_hypothesis(c, nominal, noise, d);                                   // about the data, not physics
   locate_mismatch(c, nominal, noise, d);                                        // 2.
   const HypothesisSearch search = search_hypotheses(c, nominal, noise, d);      // 3.
   augment(c, nominal, search, d);                                               // 4.

@@ -15,6 +15,8 @@
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/numeric/interval.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/data/intersample.hpp"
+#include "sets/data/noise_level.hpp"
 #include "sets/data/simulation.hpp"
 
 namespace sets {
@@ -51,7 +53,12 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
     const auto& v = data.column(c);
     return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())).eval();
   };
-  for (const auto& [sym, col] : model.inputs) measured[sym] = column(col);
+  for (const auto& [sym, col] : model.inputs) {
+    // An input that is not held enters each interval at its midpoint value (the midpoint rule, as the states).
+    const Intersample mode = declared_intersample(model, sym);
+    const std::vector<double> mid = input_between_samples(data.column(col), mode, 0.5);
+    measured[sym] = Eigen::Map<const Eigen::VectorXd>(mid.data(), static_cast<Eigen::Index>(mid.size()));
+  }
   for (const auto& [sym, col] : model.outputs) measured[sym] = column(col);
   // Unmeasured states that are the derivative of a measured one (q' = v, q measured): estimated by
   // a central difference over +-wv samples, with a noise radius rho (3 sigma of that estimate).
@@ -149,7 +156,7 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
       v[j] = (p[b] - p[a]) / ((b - a) * Ts);
     }
     zhat[z] = v;
-    rho[z] = 3 * noise_sigma(p) / (std::sqrt(2.0) * wv * Ts);
+    rho[z] = 3 * estimate_noise(p).sigma / (std::sqrt(2.0) * wv * Ts);
   }
   // Sample interval j (from t_j to t_j+1): held signals at j, states at the interval's midpoint,
   // each differentiated state anywhere in its estimate +- rho (combination `combo`).

@@ -13,6 +13,7 @@
 
 #include "diagnosis/stages.hpp"
 #include "sets/diagnosis/screening.hpp"
+#include "sets/numeric/glpk_environment.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -118,6 +119,7 @@ template <class Job>
 void parallel(int threads, std::size_t jobs, Job job) {
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
+    const GlpkThreadEnvironment glpk;  // freed when the worker ends
     for (std::size_t i; (i = next++) < jobs;) job(i);
   };
   std::vector<std::thread> pool;

@@ -191,8 +191,11 @@ void locate_mismatch(const Context& c, const NominalFit& nominal, const NoiseFlo
   Eigen::VectorXd energy = Eigen::VectorXd::Zero(N);
   for (Eigen::Index j = 0; j < ny; ++j) energy += (R.col(j) / norm[static_cast<std::size_t>(j)]).cwiseAbs2();
   for (Eigen::Index j = 0; j < ny; ++j) d.error_bound.push_back(3 * noise.sigma[static_cast<std::size_t>(j)]);
-  d.bound_note =
-      "error bound per output = 3 x noise sigma, sigma = MAD of the measured second difference / 0.6745 / sqrt(6)";
+  d.bound_note = "error bound per output = 3 x the estimated noise sigma (";
+  for (std::size_t j = 0; j < d.noise.size(); ++j)
+    d.bound_note += (j ? "; " : "") + d.noise[j].output + ": " + noise_method_name(d.noise[j].estimate.method) + " on the " +
+                    d.noise[j].record + " record";
+  d.bound_note += ")";
   const std::vector<double> sc = scales_for(d.nominal, nominal.free, {});
   Eigen::MatrixXd J;
   try {

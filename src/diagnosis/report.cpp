@@ -79,6 +79,20 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
                        {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}});
   }
   j["effects"] = effects;
+  J noise = J::object();
+  for (const auto& n : d.noise)
+    noise[n.output] = {{"sigma", num(n.estimate.sigma)}, {"method", noise_method_name(n.estimate.method)},
+                       {"record", n.record}, {"reason", n.estimate.reason},
+                       {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)}};
+  j["noise_level"] = noise;
+  const DataHypothesis& h = d.data_hypothesis;
+  j["data_hypothesis"] = {{"tested", h.tested}, {"found", h.found}, {"finding", h.finding}, {"note", h.note},
+                          {"inputs", h.inputs}, {"declared", h.declared}, {"alternative", h.alternative},
+                          {"ratio", h.tested ? num(h.ratio) : J(nullptr)},
+                          {"fit_declared", {{"estimation", fit_obj(d.outputs, h.fit_declared_estimation)},
+                                            {"validation", fit_obj(d.outputs, h.fit_declared_validation)}}},
+                          {"fit_alternative", {{"estimation", fit_obj(d.outputs, h.fit_alternative_estimation)},
+                                               {"validation", fit_obj(d.outputs, h.fit_alternative_validation)}}}};
   j["augmented"]["model"] = augmented_path.empty() ? J(nullptr) : J(augmented_path);
   j["augmented"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_augmented_estimation);
   j["augmented"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_augmented_validation);
@@ -144,9 +158,12 @@ std::string diagnosis_text(const Diagnosis& d) {
     }
     o << ")\n";
   }
-  o << "Noise level (estimate):";
-  for (std::size_t i = 0; i < d.noise_sigma.size() && i < d.outputs.size(); ++i) o << " " << d.outputs[i] << " " << fmt(d.noise_sigma[i]);
-  o << "\nNominal calibration: " << d.nominal_note << "\n";
+  o << "Noise level (estimated, one value per output channel):\n";
+  for (const auto& n : d.noise)
+    o << "  " << n.output << ": sigma = " << fmt(n.estimate.sigma) << " (" << noise_method_name(n.estimate.method) << ", "
+      << n.record << " record: " << n.estimate.reason << ")\n";
+  if (d.data_hypothesis.found) o << "About the data (not physics): " << d.data_hypothesis.finding << ".\n";
+  o << "Nominal calibration: " << d.nominal_note << "\n";
   o << "Verdict: " << d.verdict << "\n";
   for (std::size_t k = 0; k < d.effects.size(); ++k) {
     const auto& e = d.effects[k];

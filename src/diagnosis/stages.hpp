@@ -1,6 +1,8 @@
 #pragma once
 // The stages of sets::diagnose (private to src/diagnosis/): one file each.
-//   calibrate_nominal.cpp  1. simulate the file's values, calibrate the nominal, the noise floor
+//   calibrate_nominal.cpp  1. simulate the file's values, calibrate the nominal
+//   noise_floor.cpp           the noise level of every output (sets/data/noise_level.hpp)
+//   data_hypothesis.cpp       a finding about the data: the inputs' intersample behaviour
 //   locate.cpp             2. windows, operating regions, frequency band (varying_parameters.cpp:
 //                             which parameter would have to vary, and when)
 //   hypotheses.cpp         3. competing catalogue hypotheses, added greedily
@@ -68,12 +70,21 @@ struct NominalFit {
 /// d.nominal and d.fit_nominal_*.
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
 
+// ---- noise_floor.cpp
 struct NoiseFloor {
-  std::vector<double> sigma;  // per output
+  std::vector<double> sigma;  // per output (estimates: sets/data/noise_level.hpp)
   double cost = 0;            // the misfit (cost_of units) the noise alone gives
   std::string note;           // how sigma was estimated
 };
-NoiseFloor noise_floor(const Eigen::MatrixXd& measured);
+/// The noise level of every output from the calibrated nominal's residual (and the inputs'
+/// repeats), on every record, the most reliable method's value used for all; fills d.noise.
+NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d);
+
+// ---- data_hypothesis.cpp
+/// Is the mismatch a property of the data rather than of the physics? The nominal structure
+/// calibrated again with the inputs between samples as the other hypothesis (band-limited when
+/// declared held or linear, held when declared band-limited); fills d.data_hypothesis.
+void test_data_hypothesis(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d);
 
 // ---- 2. locate
 /// Windows, operating regions, signature, frequency band, error bounds and the time-varying

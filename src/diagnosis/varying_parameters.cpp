@@ -8,6 +8,7 @@
 #include "diagnosis/stages.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
 #include "sets/methods/tv_bound/window_norm.hpp"
+#include "sets/numeric/glpk_environment.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -64,6 +65,7 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
   std::atomic<int> next{0};
   std::atomic<bool> failed{false};
   auto worker = [&] {
+    const GlpkThreadEnvironment glpk;  // freed when the worker ends
     Simulator sim(model, est, {substeps});
     Eigen::MatrixXd sched(N, p.size()), y1;
     for (int job; (job = next++) < q * S;) {

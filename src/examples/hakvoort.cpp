@@ -5,10 +5,10 @@
 
 namespace sets::hakvoort {
 
-RationalModel system() {
+TransferFunction system() {
   const double r1 = 0.97, w1 = 0.6, r2 = 0.8, w2 = 0.9;
   const Eigen::Vector3d d1(1, -2 * r1 * std::cos(w1), r1 * r1), d2(1, -2 * r2 * std::cos(w2), r2 * r2);
-  RationalModel G;
+  TransferFunction G;
   G.a = Eigen::VectorXd::Zero(5);
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) G.a[i + k] += d1[i] * d2[k];  // the product of the two quadratics
@@ -20,12 +20,12 @@ RationalModel system() {
 namespace {
 
 Eigen::VectorXd lfilter(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen::VectorXd& x) {
-  DiscreteTf f{b, a, {}};
+  TransferFunction f{b, a, {}};
   return f.filter(x);
 }
 
 // Coefficients g0(k) = <G0, F_k> by the trapezoid rule on a dense grid (G0 and F_k are smooth).
-Eigen::VectorXd basis_coefficients(const RationalModel& G, const OrthonormalBasis& B, int count) {
+Eigen::VectorXd basis_coefficients(const TransferFunction& G, const OrthonormalBasis& B, int count) {
   const int P = 1 << 14;
   Eigen::VectorXd g = Eigen::VectorXd::Zero(count);
   for (int i = 0; i < P; ++i) {
@@ -39,7 +39,7 @@ Eigen::VectorXd basis_coefficients(const RationalModel& G, const OrthonormalBasi
 
 }  // namespace
 
-Data simulate(const RationalModel& G, int N, double noise, bool bounded, std::mt19937_64& rng) {
+Data simulate(const TransferFunction& G, int N, double noise, bool bounded, std::mt19937_64& rng) {
   const int pre = 3000, T = N + pre;
   std::uniform_real_distribution<double> U(-1, 1);
   std::normal_distribution<double> Nn(0, 1);
@@ -51,7 +51,7 @@ Data simulate(const RationalModel& G, int N, double noise, bool bounded, std::mt
   return {u.tail(N), (y0 + v).tail(N)};
 }
 
-HinfPriors priors_for(const RationalModel& G, const OrthonormalBasis& basis, HinfPriors p, std::string& note) {
+HinfPriors priors_for(const TransferFunction& G, const OrthonormalBasis& basis, HinfPriors p, std::string& note) {
   const Eigen::VectorXd g = basis_coefficients(G, basis, 200);
   double Mneed = 0;
   for (int k = 0; k < g.size(); ++k) Mneed = std::max(Mneed, std::abs(g[k]) / std::pow(p.rho, k));

@@ -83,7 +83,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   m.source = source;
   static const char* known[] = {"name",    "time",    "sample_time", "inputs",      "parameters",
                                 "states",  "signals", "sampled",     "derivatives", "outputs",
-                                "format_version"};
+                                "format_version", "intersample"};
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
@@ -106,6 +106,15 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   if (m.time_column.empty() && !m.sample_time)
     fail(source, "give either \"time\" (a column) or \"sample_time\" (in s)");
   m.inputs = read_texts(j, "inputs", source, false);
+  // How each input behaves between samples (sets/data/intersample.hpp reads the values).
+  m.intersample = read_texts(j, "intersample", source, false);
+  for (const auto& [input, mode] : m.intersample) {
+    bool is_input = false;
+    for (const auto& in : m.inputs) is_input = is_input || in.first == input;
+    if (!is_input) fail(source, "\"intersample." + input + "\" is not an input");
+    if (mode != "zoh" && mode != "foh" && mode != "bl")
+      fail(source, "field \"intersample." + input + "\" must be \"zoh\" (held), \"foh\" (linear) or \"bl\" (band-limited)");
+  }
   if (j.contains("parameters")) {
     const auto& ps = j["parameters"];
     if (!ps.is_object()) fail(source, "field \"parameters\" must be an object");
@@ -198,6 +207,7 @@ std::string to_json_text(const ModelFile& m) {
     return o;
   };
   if (!m.inputs.empty()) j["inputs"] = texts(m.inputs);
+  if (!m.intersample.empty()) j["intersample"] = texts(m.intersample);
   ojson ps = ojson::object();
   for (const auto& p : m.parameters) {
     if (!p.fixed && p.min <= -1e300 && p.max >= 1e300) {

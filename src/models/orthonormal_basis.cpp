@@ -8,71 +8,6 @@
 
 namespace sets {
 
-std::complex<double> DiscreteTf::operator()(double w) const {
-  const std::complex<double> zi = std::polar(1.0, -w);
-  std::complex<double> num = 0, den = 0, p = 1;
-  const Eigen::Index n = std::max(b.size(), a.size());
-  for (Eigen::Index k = 0; k < n; ++k) {
-    if (k < b.size()) num += b[k] * p;
-    if (k < a.size()) den += a[k] * p;
-    p *= zi;
-  }
-  return num / den;
-}
-
-Eigen::VectorXd DiscreteTf::filter(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  const Eigen::Index N = x.size();
-  Eigen::VectorXd y(N);
-  for (Eigen::Index t = 0; t < N; ++t) {
-    double s = 0;
-    for (Eigen::Index k = 0; k < b.size() && k <= t; ++k) s += b[k] * x[t - k];
-    for (Eigen::Index k = 1; k < a.size() && k <= t; ++k) s -= a[k] * y[t - k];
-    y[t] = s;
-  }
-  return y;
-}
-
-namespace {
-double amin(const std::vector<double>& moduli) {
-  double m = 1;
-  for (double r : moduli) m *= (1 - r);
-  return m;
-}
-}  // namespace
-
-namespace {
-constexpr int grid_points = 8192;
-std::complex<double> poly(const Eigen::VectorXd& c, double w) {
-  std::complex<double> s = 0;
-  for (Eigen::Index k = c.size() - 1; k >= 0; --k) s = s * std::polar(1.0, -w) + c[k];
-  return s;
-}
-double kl1(const Eigen::VectorXd& c) {
-  double s = 0;
-  for (Eigen::Index k = 0; k < c.size(); ++k) s += k * std::abs(c[k]);
-  return s;
-}
-// Rigorous lower bound on min |a(e^{-iw})|: the larger of prod(1-|p_i|) and the grid minimum
-// less (spacing/2) sup|a'| (real coefficients: |a| is even in w, so [0, pi] suffices).
-double a_min(const DiscreteTf& f) {
-  double g = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < grid_points; ++i) g = std::min(g, std::abs(poly(f.a, M_PI * i / (grid_points - 1))));
-  return std::max(amin(f.pole_moduli), g - 0.5 * M_PI / (grid_points - 1) * kl1(f.a));
-}
-}  // namespace
-
-double DiscreteTf::derivative_bound() const {
-  const double m = a_min(*this);
-  return kl1(b) / m + b.cwiseAbs().sum() * kl1(a) / (m * m);
-}
-
-double DiscreteTf::hinf_bound() const {
-  // Grid maximum plus (spacing/2) sup|f'|: tight, and rigorous given derivative_bound().
-  double g = 0;
-  for (int i = 0; i < grid_points; ++i) g = std::max(g, std::abs((*this)(M_PI * i / (grid_points - 1))));
-  return std::min(b.cwiseAbs().sum() / amin(pole_moduli), g + 0.5 * M_PI / (grid_points - 1) * derivative_bound());
-}
-
 OrthonormalBasis OrthonormalBasis::fir() { return laguerre(0.0); }
 
 OrthonormalBasis OrthonormalBasis::laguerre(double a) {
@@ -82,9 +17,9 @@ OrthonormalBasis OrthonormalBasis::laguerre(double a) {
   B.kind_ = a == 0 ? BasisKind::fir : BasisKind::laguerre;
   B.pole_ = a;
   // front = sqrt(1-a^2) z^-1 / (1 - a z^-1), all-pass = (z^-1 - a) / (1 - a z^-1)
-  DiscreteTf f{Eigen::Vector2d(0, std::sqrt(1 - a * a)), Eigen::Vector2d(1, -a), {std::abs(a)}};
+  TransferFunction f{Eigen::Vector2d(0, std::sqrt(1 - a * a)), Eigen::Vector2d(1, -a), {std::abs(a)}};
   B.fronts_ = {f};
-  B.allpass_ = DiscreteTf{Eigen::Vector2d(-a, 1), Eigen::Vector2d(1, -a), {std::abs(a)}};
+  B.allpass_ = TransferFunction{Eigen::Vector2d(-a, 1), Eigen::Vector2d(1, -a), {std::abs(a)}};
   return B;
 }
 
@@ -99,9 +34,9 @@ OrthonormalBasis OrthonormalBasis::kautz(std::complex<double> xi) {
   const double r2 = std::norm(xi), b = 2 * xi.real() / (1 + r2), c = -r2;
   const Eigen::Vector3d den(1, -2 * xi.real(), r2);
   const std::vector<double> mod{std::abs(xi), std::abs(xi)};
-  B.fronts_ = {DiscreteTf{Eigen::Vector3d(0, 1, -b) * std::sqrt(1 - c * c), den, mod},
-               DiscreteTf{Eigen::Vector3d(0, 0, std::sqrt((1 - c * c) * (1 - b * b))), den, mod}};
-  B.allpass_ = DiscreteTf{Eigen::Vector3d(r2, -2 * xi.real(), 1), den, mod};
+  B.fronts_ = {TransferFunction{Eigen::Vector3d(0, 1, -b) * std::sqrt(1 - c * c), den, mod},
+               TransferFunction{Eigen::Vector3d(0, 0, std::sqrt((1 - c * c) * (1 - b * b))), den, mod}};
+  B.allpass_ = TransferFunction{Eigen::Vector3d(r2, -2 * xi.real(), 1), den, mod};
   return B;
 }
 

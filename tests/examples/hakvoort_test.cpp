@@ -40,7 +40,7 @@ TEST(HakvoortExample, DerivedPriorsHoldForTheSystem) {
   // rho = 0.88, so with the FIR basis no M makes the prior hold for every k.)
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(201);
   delta[0] = 1;
-  const Eigen::VectorXd h = sets::DiscreteTf{G.b, G.a, {}}.filter(delta);
+  const Eigen::VectorXd h = sets::TransferFunction{G.b, G.a, {}}.filter(delta);
   for (int k = 0; k < 200; ++k) EXPECT_LE(std::abs(h[k + 1]), p.M * std::pow(p.rho, k)) << k;
   sets::check_priors(p);
 }

@@ -11,6 +11,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/numeric/glpk_environment.hpp"
 #include "sets/numeric/linear_program.hpp"
 
 namespace {
@@ -213,6 +214,7 @@ TEST(Pui, SeveralThreadsAtOnceGiveTheSameAnswers) {
   std::vector<std::thread> threads;
   for (int k = 0; k < 8; ++k)
     threads.emplace_back([&, k] {
+      const sets::GlpkThreadEnvironment glpk;  // freed when the thread ends
       for (int rep = 0; rep < 3; ++rep)
         parallel[k] = sets::pui(FeasibleParameterSet::from_data(data[k].Phi, data[k].y, data[k].delta));
     });

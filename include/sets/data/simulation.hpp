@@ -1,6 +1,7 @@
 #pragma once
-// Simulation of a model file against a recording: fixed-step RK4 with substeps, inputs held over a
-// sample, `sampled` signals evaluated at the sample instants and held until the next one.
+// Simulation of a model file against a recording: fixed-step RK4 with substeps, each input between
+// samples as the model file declares it (held by default; sets/data/intersample.hpp), `sampled`
+// signals evaluated at the sample instants and held until the next one.
 //
 // Expressions are muparser expressions over t, Ts, parameters, inputs, states, signals and
 // sampled signals, plus prev(x, n): the value of x n >= 1 samples earlier (the first sample when
@@ -70,10 +71,6 @@ class Simulator {
 
 /// Checks a model against a recording without simulating (same errors as the constructor).
 void check_model(const ModelFile& model, const Recording& data);
-
-/// Robust noise level of a measured signal from its second difference (the signal itself is
-/// smooth at the sampling rate; the noise is not): sigma = MAD(d2) / 0.6745 / sqrt(6).
-double noise_sigma(const Eigen::Ref<const Eigen::VectorXd>& y);
 
 /// fit = 100 (1 - ||y - yhat|| / ||y - mean y||) in percent.
 double fit_percent(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& yhat);

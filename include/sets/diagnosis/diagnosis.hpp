@@ -16,6 +16,8 @@
 #include "sets/diagnosis/acceptance.hpp"
 #include "sets/diagnosis/residual_tests.hpp"
 #include "sets/models/model_file.hpp"
+#include "sets/data/intersample.hpp"
+#include "sets/data/noise_level.hpp"
 #include "sets/data/recording.hpp"
 
 namespace sets {
@@ -35,6 +37,8 @@ struct DiagnosisOptions {
   int threads = 2;
   int varying_segments = 0;          // segments of the time-varying estimates; 0: N/500 within [10, 30]
   std::function<void(const std::string&)> progress;  // one line per stage (optional)
+  std::optional<Intersample> intersample;  // every input's behaviour between samples, overriding
+                                           // the model file (sets/data/intersample.hpp)
 };
 
 struct MismatchWindow {
@@ -106,6 +110,29 @@ struct DiagnosedEffect {
   std::vector<RuleCheck> rules;          // every documented rule, its value and threshold
 };
 
+/// The estimated noise level of one output channel (sets/data/noise_level.hpp): estimated on
+/// every record, the most reliable method's value used for all of them.
+struct OutputNoise {
+  std::string output;            // recording column
+  NoiseLevelEstimate estimate;   // the value used (an estimate, not a bound)
+  std::string record;            // "estimation" or "validation": where it came from
+};
+
+/// A finding about the data, reported apart from missing physics: the same nominal structure
+/// calibrated under the declared and under another intersample behaviour of the inputs
+/// (data_hypothesis.cpp). ratio = V_declared / V_alternative of the squared simulation errors.
+struct DataHypothesis {
+  bool tested = false;
+  std::string note;                  // why it was not tested, or what was compared
+  std::vector<std::string> inputs;   // the inputs switched
+  std::string declared, alternative; // intersample modes
+  double ratio = 0;
+  std::vector<double> fit_declared_estimation, fit_alternative_estimation;  // calibrated nominal
+  std::vector<double> fit_declared_validation, fit_alternative_validation;
+  bool found = false;                // the alternative explains the data markedly better
+  std::string finding;               // one sentence when found
+};
+
 struct Diagnosis {
   std::vector<std::string> outputs;      // recording columns of the outputs
   ModelFile nominal, augmented;          // calibrated nominal and augmented model files
@@ -135,6 +162,8 @@ struct Diagnosis {
   int hypotheses_screened = 0, hypotheses_refined = 0;
   std::vector<double> error_bound;       // per output, used for windows and PUIs
   std::string bound_note;
+  std::vector<OutputNoise> noise;        // per output
+  DataHypothesis data_hypothesis;        // a finding about the data (not physics)
   // Signals for plots.
   Eigen::VectorXd time_estimation, time_validation;
   Eigen::MatrixXd measured_estimation, nominal_estimation, augmented_estimation;

@@ -10,13 +10,14 @@
 
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 #include "sets/models/orthonormal_basis.hpp"
+#include "sets/models/transfer_function.hpp"
 
 namespace sets::hakvoort {
 
 /// G0(z) = 0.05 z^-1 (1 + 0.5 z^-1) / [(1 - 2 r1 cos(w1) z^-1 + r1^2 z^-2)(1 - 2 r2 cos(w2) z^-1 + r2^2 z^-2)]
 /// with r1 = 0.97, w1 = 0.6 rad/sample (a lightly damped resonance, damping ratio ~0.05) and
 /// r2 = 0.8, w2 = 0.9 rad/sample (a well damped second mode).
-RationalModel system();
+TransferFunction system();
 
 struct Data {
   Eigen::VectorXd u, y;
@@ -26,12 +27,12 @@ struct Data {
 /// (the initial conditions are real and unknown); noise e filtered by 1/(1 - 0.7 q^-1), Gaussian
 /// with standard deviation `noise` or (bounded) uniform with |e| <= noise, so |v| <= noise / 0.3.
 /// Draws every u, then every e, from `rng`.
-Data simulate(const RationalModel& G, int N, double noise, bool bounded, std::mt19937_64& rng);
+Data simulate(const TransferFunction& G, int N, double noise, bool bounded, std::mt19937_64& rng);
 
 /// Priors that are true for a known G (a simulation may know them): M = 1.2 max_k |g0(k)| / rho^k
 /// over the first 200 basis coefficients (beyond, they are rounding noise) unless `given.M` > 0,
 /// and the impulse-response envelope M_ic = 1.2 max_s |h0(s)| / rho_ic^s with rho_ic = 0.975
 /// unless given (> 0). `note` receives the check of the coefficient prior on G.
-HinfPriors priors_for(const RationalModel& G, const OrthonormalBasis& basis, HinfPriors given, std::string& note);
+HinfPriors priors_for(const TransferFunction& G, const OrthonormalBasis& basis, HinfPriors given, std::string& note);
 
 }  // namespace sets::hakvoort

@@ -32,7 +32,8 @@ struct ModelFile {
   std::string name;
   std::string time_column;             // "time": column with time in s ...
   std::optional<double> sample_time;   // ... or "sample_time" in s
-  NamedTexts inputs;                   // symbol -> column (held over a sample)
+  NamedTexts inputs;                   // symbol -> column
+  NamedTexts intersample;              // input symbol -> "zoh" | "foh" | "bl" (optional; absent: zoh)
   std::vector<ModelParameter> parameters;
   std::vector<ModelState> states;
   NamedTexts signals;                  // symbol -> expression, evaluated continuously

@@ -13,22 +13,14 @@
 #include <string>
 #include <vector>
 
+#include "sets/models/transfer_function.hpp"
+
 namespace sets {
 
 enum class BasisKind { fir, laguerre, kautz };
 
-/// A rational transfer function in z^-1: (b0 + b1 z^-1 + ...) / (1 + a1 z^-1 + ...).
-struct DiscreteTf {
-  Eigen::VectorXd b, a;                  // a(0) == 1
-  std::vector<double> pole_moduli;       // |p_i| of the roots of a (for the bounds)
-  std::complex<double> operator()(double w) const;
-  /// y = (b/a) x with zero initial state.
-  Eigen::VectorXd filter(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  /// sup_w |b/a| <= sum|b_k| / prod(1 - |p_i|)  (rigorous).
-  double hinf_bound() const;
-  /// sup_w |d/dw (b/a)| <= sum k|b_k|/amin + sum|b_k| sum k|a_k| / amin^2, amin = prod(1-|p_i|).
-  double derivative_bound() const;
-};
+/// The former name of TransferFunction (kept for source compatibility).
+using DiscreteTf = TransferFunction;
 
 class OrthonormalBasis {
  public:
@@ -58,14 +50,14 @@ class OrthonormalBasis {
   /// beta1 = sum_k M rho^k sup|dF_k/dw|, eq. (12), in closed form (see the method doc).
   double beta1(double M, double rho) const;
   /// The fronts and the inner factor (for frequency-local bounds, hinf_bound.cpp).
-  const std::vector<DiscreteTf>& fronts() const { return fronts_; }
-  const DiscreteTf& allpass() const { return allpass_; }
+  const std::vector<TransferFunction>& fronts() const { return fronts_; }
+  const TransferFunction& allpass() const { return allpass_; }
 
  private:
   BasisKind kind_ = BasisKind::fir;
   std::complex<double> pole_ = 0;
-  std::vector<DiscreteTf> fronts_;
-  DiscreteTf allpass_;
+  std::vector<TransferFunction> fronts_;
+  TransferFunction allpass_;
 };
 
 const char* to_string(BasisKind k);

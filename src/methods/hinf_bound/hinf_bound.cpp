@@ -54,17 +54,6 @@ double poly_min_modulus(const Eigen::VectorXd& c) {
   return 0;
 }
 
-Eigen::VectorXcd roots_of(const Eigen::VectorXd& monic_desc) {
-  // monic_desc = [1, c1, ..., cn]: z^n + c1 z^{n-1} + ... + cn.
-  const Eigen::Index n = monic_desc.size() - 1;
-  if (n <= 0) return Eigen::VectorXcd(0);
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) C(0, i) = -monic_desc[i + 1] / monic_desc[0];
-  for (Eigen::Index i = 1; i < n; ++i) C(i, i - 1) = 1;
-  Eigen::EigenSolver<Eigen::MatrixXd> es(C, false);
-  if (es.info() != Eigen::Success) throw NumericalError("root finding failed (companion eigenvalues)");
-  return es.eigenvalues();
-}
 }  // namespace
 
 // ------------------------------------------------------------------ checks
@@ -378,42 +367,6 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
   return S;
 }
 
-// ------------------------------------------------------------------ rational model
-std::complex<double> RationalModel::operator()(double w) const { return poly_at(b, w) / poly_at(a, w); }
-
-std::complex<double> RationalModel::derivative(double w) const {
-  std::complex<double> db = 0, da = 0;
-  for (Eigen::Index k = 1; k < b.size(); ++k) db += -std::complex<double>(0, k) * b[k] * std::polar(1.0, -k * w);
-  for (Eigen::Index k = 1; k < a.size(); ++k) da += -std::complex<double>(0, k) * a[k] * std::polar(1.0, -k * w);
-  const auto B = poly_at(b, w), A = poly_at(a, w);
-  return (db * A - B * da) / (A * A);
-}
-
-Eigen::VectorXcd RationalModel::poles() const { return roots_of(a); }
-
-bool RationalModel::stable(double margin) const {
-  const auto p = poles();
-  for (Eigen::Index i = 0; i < p.size(); ++i)
-    if (!(std::abs(p[i]) < 1 - margin)) return false;
-  return true;
-}
-
-std::string RationalModel::to_string() const {
-  std::ostringstream os;
-  os.precision(6);
-  auto poly = [&](const Eigen::VectorXd& c) {
-    std::ostringstream p;
-    p.precision(6);
-    for (Eigen::Index k = 0; k < c.size(); ++k) {
-      if (k) p << (c[k] < 0 ? " - " : " + ") << std::abs(c[k]) << " z^-" << k;
-      else p << c[k];
-    }
-    return p.str();
-  };
-  os << "(" << poly(b) << ") / (" << poly(a) << ")";
-  return os.str();
-}
-
 // ------------------------------------------------------------------ step 2
 NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
   if (S.empty) throw InputError("nominal model: the uncertainty set is empty (data falsify the priors)");
@@ -435,7 +388,7 @@ NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
   const auto& w = S.frequencies;
   const int K = o.polygon_sides, nv = 2 * ng + 2, it_max = std::max(1, o.iterations);
   const int nd = 256;  // dense grid for the stability (positive-real) constraint
-  auto true_error = [&](const RationalModel& m) {
+  auto true_error = [&](const TransferFunction& m) {
     double e = 0;
     for (int j = 0; j < nw; ++j) e = std::max(e, W1[j] * std::abs(fit.centres[j] - m(w[j])));
     return e;
@@ -473,7 +426,7 @@ NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
     lp.set_objective_coordinate(nv - 1, Sense::minimize);
     const LpSolution sol = lp.solve();
     if (sol.status != LpStatus::optimal) break;
-    RationalModel m;
+    TransferFunction m;
     m.a = Eigen::VectorXd::Ones(ng + 1);
     m.a.tail(ng) = sol.x.head(ng);
     m.b = sol.x.segment(ng, ng + 1);
@@ -495,7 +448,7 @@ NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
   return fit;
 }
 
-Eigen::VectorXd additive_error(const UncertaintySet& S, const RationalModel& m) {
+Eigen::VectorXd additive_error(const UncertaintySet& S, const TransferFunction& m) {
   Eigen::VectorXd d(S.frequencies.size());
   for (Eigen::Index j = 0; j < d.size(); ++j) d[j] = S.regions[j].max_distance(m(S.frequencies[j]));
   return d;
@@ -559,7 +512,8 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
   if (mm > 0) {
     Eigen::VectorXd desc(2 * mm + 1);  // descending powers of z
     for (int k = 0; k <= mm; ++k) desc[mm - k] = desc[mm + k] = k == 0 ? fit.trig[0] : fit.trig[k] / 2;
-    const Eigen::VectorXcd r = roots_of(desc / desc[0]);
+    // Its roots are the poles of 1 / (desc / desc[0]) read as a polynomial in z^-1 (palindromic).
+    const Eigen::VectorXcd r = TransferFunction{Eigen::VectorXd::Ones(1), desc / desc[0], {}}.poles();
     std::vector<std::complex<double>> v(r.data(), r.data() + r.size());
     std::sort(v.begin(), v.end(), [](auto x, auto y) { return std::abs(x) < std::abs(y); });
     inside.resize(mm);
@@ -622,7 +576,7 @@ LocalTf local_tf(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen
 // so |G0 - Ghat| <= maxdist_{P(w_j)}(Ghat(w_j) - Delta(w)) + g(w). Each cell is cut into pieces;
 // on a piece of half width eta around w_i every term is bounded by its value at w_i plus eta times
 // a Lipschitz constant valid on that piece (from the distance of the poles to the piece's arc).
-double data_bound(const UncertaintySet& S, const RationalModel& nominal, const Eigen::VectorXd& h, double Wder,
+double data_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h, double Wder,
                   double Gder, double& kappa) {
   const int n = static_cast<int>(S.theta_ref.size());
   if (n == 0 || S.theta_radius.size() != n) {
@@ -633,8 +587,8 @@ double data_bound(const UncertaintySet& S, const RationalModel& nominal, const E
   const int m = basis.block(), K = static_cast<int>(S.tail_coefficients.size());
   const double D0 = basis.front_derivative_bound(), H0 = basis.hinf_bound(), L0 = basis.allpass_derivative_bound();
   std::vector<Eigen::VectorXcd> front_poles;
-  for (const auto& f : basis.fronts()) front_poles.push_back(roots_of(f.a));
-  const Eigen::VectorXcd ap_poles = roots_of(basis.allpass().a), nom_poles = roots_of(nominal.a);
+  for (const auto& f : basis.fronts()) front_poles.push_back(f.poles());
+  const Eigen::VectorXcd ap_poles = basis.allpass().poles(), nom_poles = nominal.poles();
   // Global slope kappa (reported): sum_k radius_k sup|F_k'| + sup|T'|.
   kappa = S.tail_beta;
   for (int k = 0; k < n; ++k) kappa += S.theta_radius[k] * (D0 + double(k / m) * H0 * L0);
@@ -684,7 +638,7 @@ double data_bound(const UncertaintySet& S, const RationalModel& nominal, const E
 }
 }  // namespace
 
-BoundResult error_bound(const UncertaintySet& S, const RationalModel& nominal, const Eigen::VectorXd& h) {
+BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h) {
   const auto& w = S.frequencies;
   const int nw = static_cast<int>(w.size());
   BoundResult B;
@@ -743,7 +697,7 @@ HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure,
                     data.r.size() ? &data.r : nullptr);
 }
 
-double weighted_error(const std::function<std::complex<double>(double)>& G, const RationalModel& nominal,
+double weighted_error(const std::function<std::complex<double>(double)>& G, const TransferFunction& nominal,
                       const Eigen::VectorXd& h, int dense_points) {
   double e = 0;
   for (int i = 0; i < dense_points; ++i) {

@@ -124,34 +124,18 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
   return d;
 }
 
-FeasibleParameterSet regression_fps(const CanonicalRegression& r, double bound, std::vector<int>* falsified) {
-  return regression_fps(r, Eigen::VectorXd::Constant(r.equations, bound), falsified);
+CanonicalFps regression_fps(const CanonicalRegression& r, double bound) {
+  return regression_fps(r, Eigen::VectorXd::Constant(r.equations, bound));
 }
 
-FeasibleParameterSet regression_fps(const CanonicalRegression& r, const Eigen::VectorXd& bounds,
-                                    std::vector<int>* falsified) {
+CanonicalFps regression_fps(const CanonicalRegression& r, const Eigen::VectorXd& bounds) {
   if (bounds.size() != r.equations) throw InputError("regression_fps: one bound per equation is needed");
   for (int e = 0; e < bounds.size(); ++e)
     if (!(bounds[e] >= 0) || !std::isfinite(bounds[e]))
       throw InputError("regression_fps: the bound of equation " + std::to_string(e) + " must be finite and >= 0");
-  // Collect the kept rows first and build the FPS in one go (from_data checks them together).
-  std::vector<int> keep;
-  if (falsified) falsified->clear();
-  for (int k = 0; k < r.Psi.rows(); ++k) {
-    if (r.Psi.row(k).isZero(0)) {
-      if (falsified && std::abs(r.y[k]) > bounds[r.equation[k]]) falsified->push_back(k);
-      continue;
-    }
-    keep.push_back(k);
-  }
-  Eigen::MatrixXd Phi(keep.size(), r.Psi.cols());
-  Eigen::VectorXd y(keep.size()), delta(keep.size());
-  for (std::size_t q = 0; q < keep.size(); ++q) {
-    Phi.row(q) = r.Psi.row(keep[q]);
-    y[q] = r.y[keep[q]];
-    delta[q] = bounds[r.equation[keep[q]]];
-  }
-  return FeasibleParameterSet::from_data(Phi, y, delta);
+  IntervalVector Y(r.y.size());
+  for (Eigen::Index k = 0; k < r.y.size(); ++k) Y[k] = interval_around(r.y[k], bounds[r.equation[k]]);
+  return CanonicalFps(to_interval(r.Psi), Y);
 }
 
 PairView pair_view(const Ellipsoid& E, int i, int j) {

@@ -220,7 +220,7 @@ RC_GTEST_PROP(HinfRegion, MaxDistanceBoundsEveryPointOfTheRegion, ()) {
 
 // ------------------------------------------------------------------ steps 2 and 3
 TEST(HinfNominal, RecoversAStableSecondOrderModelFromExactCentres) {
-  RationalModel G;
+  TransferFunction G;
   G.b = Eigen::Vector3d(0, 0.3, 0.1);
   G.a = Eigen::Vector3d(1, -1.5, 0.8);
   UncertaintySet S;
@@ -265,7 +265,7 @@ RC_GTEST_PROP(HinfWeight, InverseWeightIsMinimumPhaseAndAboveDelta, ()) {
   const WeightFit W = fit_weight(grid, delta, o);
   for (int j = 0; j < n; ++j) RC_ASSERT(std::abs(W.inverse(grid[j])) >= delta[j]);
   // Minimum phase: the zeros of h(z) = sum h_k z^-k lie inside the unit circle.
-  RationalModel Hinv;
+  TransferFunction Hinv;
   Hinv.a = W.h / W.h[0];
   Hinv.b = Eigen::VectorXd::Ones(1);
   RC_ASSERT(Hinv.stable());

@@ -65,11 +65,13 @@ TEST(LevelSetUncertainty, ResidualSelectionsAndNorms) {
 TEST(LevelSetUncertainty, FpsLeavesOutRowsWithoutParametersAndReportsThem) {
   auto r = tiny_regression();
   r.Psi.row(1).setZero();  // a residual-only row (unit C row with D known)
-  std::vector<int> bad;
-  const auto fps = sets::regression_fps(r, 2.0, &bad);
+  const auto fps = sets::regression_fps(r, 2.0);
   EXPECT_EQ(fps.size(), 5);
-  ASSERT_EQ(bad.size(), 1u);  // |10| > 2
-  EXPECT_EQ(bad[0], 1);
+  ASSERT_EQ(fps.falsified_rows().size(), 1u);  // |10| > 2
+  EXPECT_EQ(fps.falsified_rows()[0], 1);
+  EXPECT_EQ(fps.contains(Eigen::Vector2d(1.0, 10.0)), sets::BoolInterval::no);  // the data contradict the bound
+  EXPECT_TRUE(sets::pui(fps).empty);
+  EXPECT_NE(sets::regression_fps(r, 10.0).contains(Eigen::Vector2d(1.0, 10.0)), sets::BoolInterval::no);
 }
 
 // Property: with bounded output noise |v| <= vbar and l >= vbar, the FPS of the canonical

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "sets/models/orthonormal_basis.hpp"
+#include "sets/models/transfer_function.hpp"
 
 namespace sets {
 
@@ -117,15 +118,8 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u,
                                const HinfPriors& priors, const UncertaintyOptions& options = {},
                                const Eigen::VectorXd* instrument = nullptr);
 
-/// A rational model b(z^-1)/a(z^-1), a(0) = 1.
-struct RationalModel {
-  Eigen::VectorXd b, a;
-  std::complex<double> operator()(double w) const;
-  std::complex<double> derivative(double w) const;  // d/dw
-  Eigen::VectorXcd poles() const;
-  bool stable(double margin = 0) const;  // every pole modulus < 1 - margin
-  std::string to_string() const;
-};
+/// The former name of TransferFunction in this method (kept for source compatibility).
+using RationalModel = TransferFunction;
 
 struct NominalOptions {
   int order = 2;                // denominator and numerator degree
@@ -135,7 +129,7 @@ struct NominalOptions {
 };
 
 struct NominalFit {
-  RationalModel model;
+  TransferFunction model;
   Eigen::VectorXcd centres;     // Chebyshev centres (16)
   double max_error = 0;         // max_j W1 |Gc - Ghat| (true modulus)
   int polygon_sides = 0;
@@ -145,7 +139,7 @@ struct NominalFit {
 /// Step 2. Throws InputError if the order cannot be met on this grid (too few frequencies).
 NominalFit fit_nominal(const UncertaintySet& set, const NominalOptions& options = {});
 /// delta(w_j) = max_{G in P(w_j)} |G - Ghat(w_j)|.
-Eigen::VectorXd additive_error(const UncertaintySet& set, const RationalModel& nominal);
+Eigen::VectorXd additive_error(const UncertaintySet& set, const TransferFunction& nominal);
 
 struct WeightOptions {
   int degree = 12;        // degree m of the trigonometric polynomial |W^-1|^2
@@ -175,7 +169,7 @@ struct BoundResult {
 };
 
 /// Step 4. weight: W^-1 as an FIR (WeightFit::h); pass h = [1] for W = 1.
-BoundResult error_bound(const UncertaintySet& set, const RationalModel& nominal, const Eigen::VectorXd& h);
+BoundResult error_bound(const UncertaintySet& set, const TransferFunction& nominal, const Eigen::VectorXd& h);
 
 struct HinfBoundOptions {
   UncertaintyOptions uncertainty;
@@ -221,7 +215,7 @@ Eigen::VectorXd midpoint_grid(int points, double w_min, double w_max);
 HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure, const HinfBoundOptions& options = {});
 
 /// max over the dense grid of |W(e^iw) (G(e^iw) - Ghat(e^iw))|, W = 1/h.
-double weighted_error(const std::function<std::complex<double>(double)>& G, const RationalModel& nominal,
+double weighted_error(const std::function<std::complex<double>(double)>& G, const TransferFunction& nominal,
                       const Eigen::VectorXd& h, int dense_points = 4096);
 
 }  // namespace sets

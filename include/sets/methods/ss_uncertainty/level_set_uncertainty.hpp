@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "sets/domains/ellipsoid.hpp"
-#include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 
 namespace sets {
@@ -59,14 +59,13 @@ LevelSetDomain level_set_domain(const CanonicalRegression& regression, const Lev
 double residual_bound(const CanonicalRegression& regression, const Eigen::VectorXd& residuals,
                       const LevelSetOptions& options, int* attaining_row = nullptr);
 
-/// The feasible parameter set of the same regression with |y_M - Psi theta| <= bound on every row
-/// that involves theta. Rows whose regressor is zero do not constrain theta and are left out;
-/// `falsified_rows` (if given) receives those whose |y| exceeds the bound.
-FeasibleParameterSet regression_fps(const CanonicalRegression& regression, double bound,
-                                    std::vector<int>* falsified_rows = nullptr);
+/// The feasible parameter set of the same regression with |y_M - Psi theta| <= bound on every
+/// row. Rows whose regressor is zero do not constrain theta; those whose |y| exceeds the bound
+/// are CanonicalFps::falsified_rows() (the set is then empty). It holds the true theta~ only if
+/// the bound holds at the truth: with l read from the residuals it is an estimate.
+CanonicalFps regression_fps(const CanonicalRegression& regression, double bound);
 /// The same with a bound per equation (bounds[e] for the rows of equation e).
-FeasibleParameterSet regression_fps(const CanonicalRegression& regression, const Eigen::VectorXd& bounds,
-                                    std::vector<int>* falsified_rows = nullptr);
+CanonicalFps regression_fps(const CanonicalRegression& regression, const Eigen::VectorXd& bounds);
 
 /// The 2-D views of an ellipsoid for the parameters (i, j): the exact projection (shadow) and
 /// the exact slice through the centre (every other parameter at its estimate).

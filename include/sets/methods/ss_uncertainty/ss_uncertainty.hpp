@@ -15,7 +15,7 @@
 
 #include <optional>
 
-#include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 
@@ -30,7 +30,7 @@ struct SsUncertaintyOptions {
 struct SsUncertaintyResult {
   PropagatorResult identification;
   LevelSetDomain estimate_level_set;      // the paper's ellipsoid (not guaranteed)
-  FeasibleParameterSet estimate_fps{1};   // |y_M - Psi theta| <= l per equation (not guaranteed)
+  CanonicalFps estimate_fps;              // |y_M - Psi theta| <= l per equation (not guaranteed)
   std::optional<PuiResult> estimate_fps_pui;
 };
 

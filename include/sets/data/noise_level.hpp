@@ -1,0 +1,73 @@
+#pragma once
+// An estimate of the measurement noise level of one recorded output that does not mistake signal
+// for noise, whether the signal is sampled fast or coarsely, and whether the noise is white,
+// coloured or a quantisation. It says which method gave it and why. Every rule is scale-free:
+// ratios of powers, fractions of the band and counts of samples; neither units nor the sample
+// time enter. The design study and its validation are in docs/methods/noise-level.md.
+//
+// It is an estimate, not a bound: nothing here is guaranteed.
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace sets {
+
+/// How the noise level was obtained, most reliable first.
+enum class NoiseMethod {
+  repeats,            // the exogenous inputs repeat: the output's difference over the lag is noise
+  residual_coloured,  // residual of the calibrated model; AR(1) noise shape verified over >= 4 octaves
+  residual_floor,     // residual of the calibrated model; its white floor (a lower bound for coloured noise)
+  output_spectrum,    // no model: the output's own spectrum (white floor or difference plateau)
+};
+const char* noise_method_name(NoiseMethod m);
+
+struct NoiseLevelEstimate {
+  double sigma = 0;                 // estimated standard deviation of the noise, output units
+  NoiseMethod method = NoiseMethod::output_spectrum;
+  std::string reason;               // what was found, in one line
+  double quantisation_step = 0;     // the output's lattice step q when it is quantised (0: not)
+};
+
+/// The noise level of `y`. Optional evidence (pass empty objects when absent):
+///   simulated  the calibrated model's output for y (same length);
+///   inputs     the model's EXOGENOUS inputs, one column each (a closed loop's reference, never
+///              a controller output: the noise must be independent of them).
+/// Rule (docs/methods/noise-level.md): a quantised y (every value on a lattice of step q) is never
+/// judged by repeats; repeated stretches of the inputs give the noise directly; otherwise the
+/// residual y - simulated, projected off short FIRs of the simulated output, its square and
+/// cube and the inputs, is read from its Welch spectrum (an AR(1) shape extrapolated when it holds
+/// from 1/32 to 1/2 cycles/sample, else the white floor of the top 1/8 band or the plateau of
+/// the differences, whichever is lower), capped by the projected residual's RMS; without a model
+/// the same reading of y itself. Never below q/sqrt(12).
+NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                  const Eigen::Ref<const Eigen::VectorXd>& simulated = Eigen::VectorXd(),
+                                  const Eigen::Ref<const Eigen::MatrixXd>& inputs = Eigen::MatrixXd());
+
+/// One estimate for one output column recorded several times: the most reliable method wins
+/// (the earliest on a tie), because the noise of a channel is a property of the channel.
+std::size_t most_reliable(const std::vector<NoiseLevelEstimate>& estimates);
+
+// ---- the parts, exposed for tests and for callers that need one of them
+
+/// q if every y - y[0] is an integer multiple (to 1e-3 q) of q = the smallest nonzero |step|; else 0.
+double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y);
+
+/// A lag P at which the inputs repeat themselves over stretches, and which samples n (n + P < N)
+/// lie in matching windows. Empty mask: no repeats.
+struct InputRepeats {
+  int lag = 0;
+  std::vector<char> mask;  // size N - lag
+  long matched = 0;        // samples in the mask
+};
+InputRepeats detect_repeats(const Eigen::Ref<const Eigen::MatrixXd>& inputs);
+/// RMS of (y(n + P) - y(n)) / sqrt(2) over the matched samples, blocks holding left-over transients
+/// (mean square > 4 x the median block) dropped.
+double sigma_from_repeats(const Eigen::Ref<const Eigen::VectorXd>& y, const InputRepeats& repeats);
+
+/// sigma_m = clipped RMS of the m-th difference / sqrt(C(2m, m)), m = 1..8, at the first m whose
+/// successor falls by less than 10 % (a white plateau); the order chosen is returned in `order`.
+double sigma_difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x, int* order = nullptr);
+
+}  // namespace sets

@@ -1,0 +1,465 @@
+#include "sets/data/noise_level.hpp"
+
+#include <unsupported/Eigen/FFT>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numeric>
+#include <sstream>
+
+#include "sets/data/spectrum.hpp"
+
+namespace sets {
+
+const char* noise_method_name(NoiseMethod m) {
+  switch (m) {
+    case NoiseMethod::repeats: return "repeats";
+    case NoiseMethod::residual_coloured: return "residual (coloured)";
+    case NoiseMethod::residual_floor: return "residual (white floor)";
+    case NoiseMethod::output_spectrum: return "output spectrum";
+  }
+  return "?";
+}
+
+namespace {
+
+using Eigen::Index;
+using Eigen::VectorXd;
+
+std::string num(double x, int precision = 3) {
+  std::ostringstream o;
+  o.precision(precision);
+  o << x;
+  return o.str();
+}
+
+// numpy's median (the mean of the two middle values for an even count).
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const std::size_t n = v.size(), h = n / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
+  if (n % 2) return v[h];
+  const double hi = v[h];
+  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<long>(h)));
+}
+
+// RMS after discarding |x| > 3.5 rms, iterated (the spikes that steps make in differences); unlike
+// a median it works on lattice-valued data. 0.996: RMS of a Gaussian truncated at 3.5 sigma.
+double clipped_rms(const VectorXd& x) {
+  double s = std::sqrt(x.squaredNorm() / static_cast<double>(std::max<Index>(1, x.size())));
+  for (int it = 0; it < 5; ++it) {
+    double sum = 0;
+    long kept = 0;
+    for (Index i = 0; i < x.size(); ++i)
+      if (std::abs(x[i]) <= 3.5 * s) sum += x[i] * x[i], ++kept;
+    if (kept < 10) break;
+    const double next = std::sqrt(sum / static_cast<double>(kept)) / 0.9960;
+    if (next == s) break;
+    s = next;
+  }
+  return s;
+}
+
+// ---- spectrum of the noise
+
+// AR(1) density c / (1 + a^2 - 2 a cos 2 pi f) fitted to P over a band that starts as the top half
+// and grows one octave at a time while every octave keeps mean(P / S) within [1/1.5, 1.5] (1.5 is
+// ~4 standard errors of a 30-dof Welch average over >= 4 bins). Below the band the spectrum is
+// taken to be signal or model error; the noise variance is extrapolated: c / (2 (1 - a^2)).
+struct ArBand {
+  double sigma = 0, a = 0, f_lo = 0.25;
+};
+
+ArBand ar_band(const VectorXd& f, const VectorXd& P) {
+  constexpr double a_max = 0.9, accept = 1.5;
+  const Index nb = f.size();
+  const VectorXd cw = (2 * M_PI * f).array().cos();
+  auto shape = [&](double a, Index k) { return 1 + a * a - 2 * a * cw[k]; };
+  // c(a) = mean(P D_a) over the band; a on a grid of 0.01 minimising the log-misfit.
+  auto fit = [&](const std::vector<char>& band, double& a_best, double& c_best) {
+    double best = 1e300;
+    for (int g = 0; g <= 90; ++g) {
+      const double a = a_max * g / 90.0;
+      double c = 0;
+      long n = 0;
+      for (Index k = 0; k < nb; ++k)
+        if (band[static_cast<std::size_t>(k)]) c += P[k] * shape(a, k), ++n;
+      c /= static_cast<double>(std::max<long>(1, n));
+      double mis = 0;
+      for (Index k = 0; k < nb; ++k)
+        if (band[static_cast<std::size_t>(k)]) {
+          const double l = std::log(P[k] * shape(a, k) / c);
+          mis += l * l;
+        }
+      mis /= static_cast<double>(std::max<long>(1, n));
+      if (mis < best) best = mis, a_best = a, c_best = c;
+    }
+  };
+  ArBand r;
+  std::vector<char> band(static_cast<std::size_t>(nb));
+  for (Index k = 0; k < nb; ++k) band[static_cast<std::size_t>(k)] = f[k] >= r.f_lo;
+  double c = 0;
+  fit(band, r.a, c);
+  while (true) {
+    const double nf = r.f_lo / 2;
+    std::vector<char> grown = band;
+    long added = 0;
+    for (Index k = 0; k < nb; ++k)
+      if (f[k] >= nf && f[k] < r.f_lo) grown[static_cast<std::size_t>(k)] = 1, ++added;
+    if (added < 4) break;
+    double a2 = 0, c2 = 0;
+    fit(grown, a2, c2);
+    std::vector<double> ratios;  // every octave of the grown band, lowest first; the top one is [1/4, 1/2]
+    for (double lo = nf; lo < 0.5; lo *= 2) {
+      double sum = 0;
+      long n = 0;
+      for (Index k = 0; k < nb; ++k)
+        if (f[k] >= lo && (lo >= 0.25 || f[k] < 2 * lo)) sum += P[k] * shape(a2, k) / c2, ++n;
+      if (n > 0) ratios.push_back(sum / static_cast<double>(n));
+    }
+    const auto [mn, mx] = std::minmax_element(ratios.begin(), ratios.end());
+    if (ratios.empty() || ratios.front() > accept || *mx > accept || *mn < 1 / accept) break;
+    band = grown;
+    r.f_lo = nf;
+    r.a = a2;
+    c = c2;
+  }
+  r.sigma = std::sqrt(c / (2 * (1 - r.a * r.a)));
+  return r;
+}
+
+// Colour is believed only when the AR(1) shape holds from f = 1/32 to 1/2 (4 octaves): by then it
+// has risen above its Nyquist value by 3.4x (a = 0.3) to 81x (a = 0.9), so a is well constrained.
+constexpr double colour_gate = 1.0 / 32;
+
+struct SpectralReading {
+  double sigma = 0;
+  bool coloured = false;
+  std::string reason;
+};
+
+// The noise in one or more signals that all carry it (y itself, or the raw and the projected
+// residual): per-bin minimum of their Welch densities, then the AR(1) extrapolation if its shape
+// is verified, else the lower of the white floor of the top 1/8 band and the difference plateau.
+SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
+  WelchSpectrum s = welch_spectrum(signals.front());
+  for (std::size_t i = 1; i < signals.size(); ++i) s.density = s.density.cwiseMin(welch_spectrum(signals[i]).density);
+  SpectralReading out;
+  const ArBand ar = ar_band(s.frequency, s.density);
+  if (ar.f_lo <= colour_gate) {
+    out.sigma = ar.sigma;
+    out.coloured = true;
+    out.reason = "AR(1) a = " + num(ar.a, 2) + " fits the spectrum from f = " + num(ar.f_lo, 3) + " to 0.5 cycles/sample";
+    return out;
+  }
+  std::vector<double> top;  // 0.98: median / mean of a 30-dof chi-square
+  for (Index k = 0; k < s.frequency.size(); ++k)
+    if (s.frequency[k] >= 0.5 * (1 - 1.0 / 8)) top.push_back(s.density[k]);
+  const double floor = std::sqrt(0.5 * median(top) / 0.98);
+  double plateau = 1e300;
+  int order = 0;
+  for (const auto& x : signals) {
+    int m = 0;
+    const double p = sigma_difference_plateau(x, &m);
+    if (p < plateau) plateau = p, order = m;
+  }
+  const std::string held = " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")";
+  if (floor <= plateau) {
+    out.sigma = floor;
+    out.reason = "white floor of the top 1/8 band" + held;
+  } else {
+    out.sigma = plateau;
+    out.reason = "plateau of the " + std::to_string(order) + "-th difference" + held;
+  }
+  return out;
+}
+
+// ---- the calibrated model's residual
+
+// r minus its least-squares fit by two-sided FIRs (lags -3 .. L-1) of each regressor (standardised)
+// and a constant, over the rows where every lag exists; returns the projected residual and the
+// number of fitted parameters. The normal equations are accumulated in blocks of rows (the
+// regressor matrix of a long record would not fit in memory) and solved by a symmetric
+// eigen-decomposition that drops directions below 1e-12 of the largest (lags of a smooth signal
+// are nearly collinear).
+VectorXd project_residual(const VectorXd& r, const std::vector<VectorXd>& regressors, int L, int& parameters) {
+  const Index N = r.size(), lags = L + 3;
+  std::vector<VectorXd> z;
+  for (const auto& c : regressors) {
+    const double mean = c.mean();
+    const double sd = std::sqrt((c.array() - mean).square().mean());
+    if (!(sd > 0)) continue;  // a constant regressor carries nothing
+    z.push_back((c.array() - mean) / sd);
+  }
+  const Index p = 1 + static_cast<Index>(z.size()) * lags;
+  parameters = static_cast<int>(p);
+  const Index first = L, last = N - 3;  // rows [first, last)
+  constexpr Index block = 1024;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(p, p);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> X(block, p);
+  auto fill_row = [&](Index t, Index i) {
+    X(i, 0) = 1;
+    for (std::size_t c = 0; c < z.size(); ++c)
+      for (Index l = -3; l < L; ++l) X(i, 1 + static_cast<Index>(c) * lags + (l + 3)) = z[c][t - l];
+  };
+  VectorXd h = VectorXd::Zero(p);
+  for (Index t0 = first; t0 < last; t0 += block) {
+    const Index b = std::min(block, last - t0);
+    for (Index i = 0; i < b; ++i) fill_row(t0 + i, i);
+    G.selfadjointView<Eigen::Lower>().rankUpdate(X.topRows(b).transpose());
+    h += X.topRows(b).transpose() * r.segment(t0, b);
+  }
+  G = G.selfadjointView<Eigen::Lower>();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G);
+  const VectorXd& lambda = eig.eigenvalues();
+  const double cut = 1e-12 * lambda.cwiseAbs().maxCoeff();
+  VectorXd coeff = eig.eigenvectors().transpose() * h;
+  for (Index k = 0; k < p; ++k) coeff[k] = lambda[k] > cut ? coeff[k] / lambda[k] : 0.0;
+  const VectorXd beta = eig.eigenvectors() * coeff;
+  VectorXd e(last - first);
+  for (Index t0 = first; t0 < last; t0 += block) {
+    const Index b = std::min(block, last - t0);
+    for (Index i = 0; i < b; ++i) fill_row(t0 + i, i);
+    e.segment(t0 - first, b) = r.segment(t0, b) - X.topRows(b) * beta;
+  }
+  return e;
+}
+
+}  // namespace
+
+double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y) {
+  double q = 1e300;
+  long steps = 0;
+  for (Index k = 1; k < y.size(); ++k) {
+    const double d = std::abs(y[k] - y[k - 1]);
+    if (d > 0) q = std::min(q, d), ++steps;
+  }
+  if (steps < 10) return 0;
+  for (Index k = 0; k < y.size(); ++k) {
+    const double z = (y[k] - y[0]) / q;
+    if (std::abs(z - std::round(z)) >= 1e-3) return 0;
+  }
+  return q;
+}
+
+double sigma_difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x, int* order) {
+  static const double central_binomial[] = {2, 6, 20, 70, 252, 924, 3432, 12870};  // C(2m, m)
+  std::vector<double> s;
+  VectorXd d = x;
+  for (int m = 1; m <= 8 && d.size() > 1; ++m) {
+    d = (d.tail(d.size() - 1) - d.head(d.size() - 1)).eval();
+    s.push_back(clipped_rms(d) / std::sqrt(central_binomial[m - 1]));
+  }
+  if (s.empty()) return 0;
+  // For white noise sigma_{m+1} / sigma_m = 1; each further order multiplies a signal's share by
+  // about sin(pi f) < 1, so a fall of more than 10 % means signal still dominates sigma_m.
+  std::size_t pick = s.size() - 1;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i)
+    if (s[i + 1] > 0.9 * s[i]) {
+      pick = i;
+      break;
+    }
+  if (order) *order = static_cast<int>(pick) + 1;
+  return s[pick];
+}
+
+InputRepeats detect_repeats(const Eigen::Ref<const Eigen::MatrixXd>& inputs) {
+  InputRepeats none;
+  const Index N = inputs.rows();
+  // Standardised non-constant inputs; a window matches when all of them repeat together.
+  std::vector<VectorXd> x;
+  for (Index j = 0; j < inputs.cols(); ++j) {
+    const VectorXd c = inputs.col(j).array() - inputs.col(j).mean();
+    const double sd = std::sqrt(c.squaredNorm() / static_cast<double>(std::max<Index>(1, N)));
+    if (sd > 0) x.push_back(c / sd);
+  }
+  if (x.empty() || N < 64) return none;
+  // Autocorrelation (FFT, zero-padded), summed over the inputs and normalised.
+  Index nfft = 1;
+  while (nfft < 2 * N) nfft *= 2;
+  Eigen::FFT<double> fft;
+  std::vector<double> ac(static_cast<std::size_t>(N), 0.0);
+  {
+    std::vector<double> pad(static_cast<std::size_t>(nfft));
+    std::vector<std::complex<double>> F;
+    std::vector<double> back;
+    for (const auto& c : x) {
+      std::fill(pad.begin(), pad.end(), 0.0);
+      for (Index i = 0; i < N; ++i) pad[static_cast<std::size_t>(i)] = c[i];
+      fft.fwd(F, pad);
+      for (auto& v : F) v = std::norm(v);
+      fft.inv(back, F);
+      for (Index i = 0; i < N; ++i) ac[static_cast<std::size_t>(i)] += back[static_cast<std::size_t>(i)];
+    }
+  }
+  const double ac0 = ac[0];
+  if (!(ac0 > 0)) return none;
+  for (auto& v : ac) v /= ac0;
+  Index Lc = -1;  // correlation length: first lag below 0.5
+  for (Index i = 0; i < N; ++i)
+    if (ac[static_cast<std::size_t>(i)] < 0.5) {
+      Lc = i;
+      break;
+    }
+  if (Lc < 0) return none;
+  // >= ~16 independent input values per window: a binary input matches by chance with ~2^-16.
+  const Index W = std::max<Index>(32, 32 * Lc);
+  const Index lo = std::max<Index>(2 * Lc, 8), hi = N - 8 * W;
+  if (hi - lo < 3) return none;
+  std::vector<std::pair<double, Index>> peaks;
+  for (Index i = lo + 1; i + 1 < hi; ++i) {
+    const double v = ac[static_cast<std::size_t>(i)];
+    if (v > ac[static_cast<std::size_t>(i - 1)] && v >= ac[static_cast<std::size_t>(i + 1)]) peaks.emplace_back(v, i);
+  }
+  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (peaks.size() > 5) peaks.resize(5);
+  double mean_energy = 0;
+  for (const auto& c : x) mean_energy += c.squaredNorm();
+  mean_energy /= static_cast<double>(N);
+  InputRepeats best;
+  for (const auto& [value, P] : peaks) {
+    (void)value;
+    const Index M = N - P;  // pairs (n, n + P)
+    // Prefix sums of (a - b)^2, a^2, b^2 over all inputs, a = x[n + P], b = x[n].
+    std::vector<double> d2(static_cast<std::size_t>(M + 1), 0.0), ea(d2), eb(d2);
+    for (Index n = 0; n < M; ++n) {
+      double dd = 0, aa = 0, bb = 0;
+      for (const auto& c : x) {
+        const double a = c[n + P], b = c[n];
+        dd += (a - b) * (a - b), aa += a * a, bb += b * b;
+      }
+      const auto u = static_cast<std::size_t>(n);
+      d2[u + 1] = d2[u] + dd, ea[u + 1] = ea[u] + aa, eb[u + 1] = eb[u] + bb;
+    }
+    std::vector<int> cover(static_cast<std::size_t>(M + 1), 0);  // difference array of the mask
+    for (Index n = 0; n + W <= M; ++n) {
+      const auto a = static_cast<std::size_t>(n), b = static_cast<std::size_t>(n + W);
+      const double wd = d2[b] - d2[a], wa = ea[b] - ea[a], wb = eb[b] - eb[a];
+      const double floor = 0.1 * static_cast<double>(W) * mean_energy;
+      if (1 - wd / (wa + wb + 1e-300) > 0.99 && wa > floor && wb > floor) ++cover[a], --cover[b];
+    }
+    InputRepeats r;
+    r.lag = static_cast<int>(P);
+    r.mask.assign(static_cast<std::size_t>(M), 0);
+    int run = 0;
+    for (Index n = 0; n < M; ++n) {
+      run += cover[static_cast<std::size_t>(n)];
+      if (run > 0) r.mask[static_cast<std::size_t>(n)] = 1, ++r.matched;
+    }
+    if (r.matched >= 2 * W && r.matched > best.matched) best = std::move(r);
+  }
+  return best;
+}
+
+double sigma_from_repeats(const Eigen::Ref<const Eigen::VectorXd>& y, const InputRepeats& rep) {
+  const Index P = rep.lag, M = static_cast<Index>(rep.mask.size());
+  std::vector<Index> idx;
+  for (Index n = 0; n < M; ++n)
+    if (rep.mask[static_cast<std::size_t>(n)]) idx.push_back(n);
+  if (idx.empty()) return 0;
+  auto d = [&](Index n) { return (y[n + P] - y[n]) / std::sqrt(2.0); };
+  double mean = 0;
+  for (Index n : idx) mean += d(n);
+  mean /= static_cast<double>(idx.size());
+  // Runs of consecutive matched samples, cut into blocks of max(16, shortest run / 8).
+  std::vector<std::pair<std::size_t, std::size_t>> runs;  // [begin, end) into idx
+  for (std::size_t i = 0; i < idx.size();) {
+    std::size_t j = i + 1;
+    while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
+    runs.emplace_back(i, j);
+    i = j;
+  }
+  std::size_t shortest = idx.size();
+  for (const auto& [a, b] : runs) shortest = std::min(shortest, b - a);
+  const std::size_t block = std::max<std::size_t>(16, shortest / 8);
+  std::vector<double> ms;
+  for (const auto& [a, b] : runs) {
+    const std::size_t len = b - a, pieces = std::max<std::size_t>(1, len / block);
+    // numpy.array_split: the first len % pieces pieces hold one sample more.
+    std::size_t start = a;
+    for (std::size_t k = 0; k < pieces; ++k) {
+      const std::size_t size = len / pieces + (k < len % pieces ? 1 : 0);
+      double s = 0;
+      for (std::size_t i = start; i < start + size; ++i) s += (d(idx[i]) - mean) * (d(idx[i]) - mean);
+      ms.push_back(s / static_cast<double>(size));
+      start += size;
+    }
+  }
+  // Blocks above 4 x the median block hold the plant's transient after the input starts repeating.
+  const double med = median(ms);
+  double sum = 0;
+  long kept = 0;
+  for (double v : ms)
+    if (v <= 4 * med) sum += v, ++kept;
+  return std::sqrt(sum / static_cast<double>(std::max<long>(1, kept)));
+}
+
+NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& simulated,
+                                  const Eigen::Ref<const Eigen::MatrixXd>& inputs) {
+  NoiseLevelEstimate out;
+  const Index N = y.size();
+  const bool have_model = simulated.size() == N && N > 0;
+  const bool have_inputs = inputs.rows() == N && inputs.cols() > 0;
+  out.quantisation_step = lattice_step(y);
+  const double q = out.quantisation_step;
+  // Quantisation repeats with the signal, so a quantised output's repeat difference is not its noise.
+  if (have_inputs && q == 0) {
+    const InputRepeats rep = detect_repeats(inputs);
+    if (rep.matched > 0) {
+      out.sigma = sigma_from_repeats(y, rep);
+      out.method = NoiseMethod::repeats;
+      out.reason = "the inputs repeat with a lag of " + std::to_string(rep.lag) + " samples over " +
+                   std::to_string(rep.matched) + " samples";
+      return out;
+    }
+  }
+  const VectorXd r = have_model ? VectorXd(y - simulated) : VectorXd(y);
+  if (N < 64) {  // too short for a spectrum
+    int m = 0;
+    out.sigma = sigma_difference_plateau(r, &m);
+    out.method = have_model ? NoiseMethod::residual_floor : NoiseMethod::output_spectrum;
+    out.reason = "plateau of the " + std::to_string(m) + "-th difference (" + std::to_string(N) + " samples: too few for a spectrum)";
+  } else if (have_model) {
+    const int L = static_cast<int>(std::min<Index>(64, std::max<Index>(8, N / 200)));
+    const VectorXd s = simulated.array() - simulated.mean();
+    std::vector<VectorXd> regressors{simulated, s.array().square(), s.array().cube()};
+    for (Index j = 0; have_inputs && j < inputs.cols(); ++j) regressors.emplace_back(inputs.col(j));
+    int p = 0;
+    const VectorXd e = project_residual(r, regressors, L, p);
+    const VectorXd raw = r.segment(L, N - 3 - L);
+    const double dof = static_cast<double>(e.size() - p);
+    // The noise is independent of the inputs, so E[upper^2] >= sigma^2: an upper bound in
+    // expectation (noise plus what the model leaves unexplained).
+    const double upper = dof > 0 ? std::sqrt(e.squaredNorm() / dof) : std::sqrt(raw.squaredNorm() / static_cast<double>(raw.size()));
+    const SpectralReading sp = dof > p ? from_spectrum({raw, e}) : from_spectrum({raw});
+    out.sigma = sp.sigma;
+    out.method = sp.coloured ? NoiseMethod::residual_coloured : NoiseMethod::residual_floor;
+    out.reason = "residual of the model: " + sp.reason;
+    if (out.sigma > upper) {
+      out.sigma = upper;
+      out.reason += "; capped by the projected residual's RMS";
+    }
+  } else {
+    const SpectralReading sp = from_spectrum({r});
+    out.sigma = sp.sigma;
+    out.method = NoiseMethod::output_spectrum;
+    out.reason = "spectrum of the output: " + sp.reason;
+  }
+  if (out.sigma < q / std::sqrt(12.0)) {
+    out.sigma = q / std::sqrt(12.0);
+    out.reason += "; raised to the quantisation floor q/sqrt(12), q = " + num(q);
+  }
+  return out;
+}
+
+std::size_t most_reliable(const std::vector<NoiseLevelEstimate>& estimates) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < estimates.size(); ++i)
+    if (static_cast<int>(estimates[i].method) < static_cast<int>(estimates[best].method)) best = i;
+  return best;
+}
+
+}  // namespace sets

@@ -1,0 +1,143 @@
+#include "sets/methods/ss_uncertainty/canonical_fps.hpp"
+
+#include <numeric>
+#include <string>
+
+#include "sets/core/error.hpp"
+
+namespace sets {
+namespace {
+
+bool is_zero(const Interval& x) { return x.lower() == 0 && x.upper() == 0; }
+
+int find_root(std::vector<int>& parent, int j) {
+  while (parent[j] != j) j = parent[j] = parent[parent[j]];
+  return j;
+}
+
+}  // namespace
+
+CanonicalFps::CanonicalFps(const IntervalMatrix& Psi, const IntervalVector& Y)
+    : dimension_(static_cast<int>(Psi.cols())) {
+  if (Psi.rows() != Y.size())
+    throw InputError("CanonicalFps: " + std::to_string(Psi.rows()) + " regressor rows but " +
+                     std::to_string(Y.size()) + " outputs");
+  const int p = dimension_;
+  // Union-find over the parameters: a row joins every parameter it involves.
+  std::vector<int> parent(static_cast<std::size_t>(p));
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<int> first_column(static_cast<std::size_t>(Psi.rows()), -1);
+  for (Eigen::Index t = 0; t < Psi.rows(); ++t)
+    for (int j = 0; j < p; ++j) {
+      if (is_zero(Psi(t, j))) continue;
+      int& f = first_column[static_cast<std::size_t>(t)];
+      if (f < 0) f = j;
+      else parent[static_cast<std::size_t>(find_root(parent, j))] = find_root(parent, f);
+    }
+  std::vector<int> block_of_root(static_cast<std::size_t>(p), -1);
+  for (Eigen::Index t = 0; t < Psi.rows(); ++t) {
+    const int f = first_column[static_cast<std::size_t>(t)];
+    if (f < 0) {
+      if (!(Y[t].lower() <= 0 && 0 <= Y[t].upper())) falsified_.push_back(static_cast<int>(t));
+      continue;
+    }
+    int& b = block_of_root[static_cast<std::size_t>(find_root(parent, f))];
+    if (b < 0) {
+      b = static_cast<int>(blocks_.size());
+      blocks_.emplace_back();
+    }
+    blocks_[static_cast<std::size_t>(b)].rows.push_back(static_cast<int>(t));
+  }
+  for (int j = 0; j < p; ++j) {
+    const int b = block_of_root[static_cast<std::size_t>(find_root(parent, j))];
+    if (b < 0)
+      throw InputError("CanonicalFps: parameter " + std::to_string(j) + " appears in no row (it is not identifiable)");
+    blocks_[static_cast<std::size_t>(b)].parameters.push_back(j);
+  }
+  for (Block& block : blocks_) {
+    const auto n = static_cast<Eigen::Index>(block.rows.size());
+    const auto m = static_cast<Eigen::Index>(block.parameters.size());
+    IntervalMatrix phi(n, m);
+    IntervalVector y(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      for (Eigen::Index q = 0; q < m; ++q) phi(k, q) = Psi(block.rows[k], block.parameters[q]);
+      y[k] = Y[block.rows[k]];
+    }
+    block.set = FeasibleParameterSet::from_interval_data(phi, y);
+  }
+}
+
+int CanonicalFps::size() const {
+  int n = 0;
+  for (const Block& b : blocks_) n += b.set.size();
+  return n;
+}
+
+bool CanonicalFps::has_interval_regressors() const {
+  for (const Block& b : blocks_)
+    if (b.set.has_interval_regressors()) return true;
+  return false;
+}
+
+BoolInterval CanonicalFps::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
+  if (theta.size() != dimension_) throw InputError("CanonicalFps::contains: wrong dimension");
+  if (!falsified_.empty()) return BoolInterval::no;
+  BoolInterval result = BoolInterval::yes;
+  for (const Block& b : blocks_) {
+    Eigen::VectorXd part(static_cast<Eigen::Index>(b.parameters.size()));
+    for (std::size_t q = 0; q < b.parameters.size(); ++q) part[static_cast<Eigen::Index>(q)] = theta[b.parameters[q]];
+    const BoolInterval v = b.set.contains(part);
+    if (v == BoolInterval::no) return v;
+    if (v == BoolInterval::unknown) result = v;
+  }
+  return result;
+}
+
+PuiResult pui(const CanonicalFps& fps, const PuiOptions& options) {
+  PuiResult r;
+  const int p = fps.dimension();
+  if (!fps.falsified_rows().empty()) {
+    r.empty = true;
+    r.guaranteed = true;  // 0 outside an output interval is decided exactly
+    r.falsification.samples = fps.falsified_rows();
+    r.falsification.violation.assign(r.falsification.samples.size(), 0.0);
+    return r;
+  }
+  r.box.resize(p);
+  r.lower_points.resize(p, p);
+  r.upper_points.resize(p, p);
+  r.guaranteed = true;
+  std::vector<PuiResult> parts;
+  for (const CanonicalFps::Block& b : fps.blocks()) {
+    parts.push_back(pui(b.set, options));
+    PuiResult& part = parts.back();
+    r.lp_solves += part.lp_solves;
+    r.guaranteed = r.guaranteed && part.guaranteed;
+    if (part.empty) {
+      r.empty = true;
+      r.box = IntervalVector();
+      r.falsification = part.falsification;
+      for (int& s : r.falsification.samples) s = b.rows[static_cast<std::size_t>(s)];
+      return r;
+    }
+    for (std::size_t q = 0; q < b.parameters.size(); ++q) r.box[b.parameters[q]] = part.box[static_cast<Eigen::Index>(q)];
+  }
+  // Attaining points: a block's own point in its parameters, one feasible point of every other
+  // block elsewhere (the set is their product, so the combination is feasible).
+  const auto& blocks = fps.blocks();
+  for (std::size_t a = 0; a < blocks.size(); ++a)
+    for (std::size_t q = 0; q < blocks[a].parameters.size(); ++q) {
+      const int l = blocks[a].parameters[q];
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
+        const Eigen::Index col = b == a ? static_cast<Eigen::Index>(q) : 0;
+        for (std::size_t s = 0; s < blocks[b].parameters.size(); ++s) {
+          r.lower_points(blocks[b].parameters[s], l) = parts[b].lower_points(static_cast<Eigen::Index>(s), col);
+          r.upper_points(blocks[b].parameters[s], l) = parts[b].upper_points(static_cast<Eigen::Index>(s), col);
+        }
+      }
+    }
+  r.central = midpoint(r.box);
+  return r;
+}
+
+}  // namespace sets

@@ -1,0 +1,181 @@
+// The noise-level estimate: each method on a case where it must be right, scale-freedom, and the
+// real recordings (Silverbox, EMPS) where a truth is known.
+
+#include <gtest/gtest.h>
+
+#include <unsupported/Eigen/FFT>
+
+#include <cmath>
+#include <complex>
+#include <random>
+
+#include "sets/data/intersample.hpp"
+#include "sets/data/noise_level.hpp"
+#include "sets/data/recording.hpp"
+#include "sets/data/simulation.hpp"
+#include "sets/models/model_file.hpp"
+#include "support/shared_data.hpp"
+
+using namespace sets;
+
+namespace {
+
+using Eigen::VectorXd;
+
+// A random multisine with lines between f_lo and f_hi cycles/sample, repeated `periods` times.
+VectorXd multisine(int N, double f_lo, double f_hi, int periods, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> phase(0, 2 * M_PI);
+  const int P = N / periods;
+  std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(P), 0.0);
+  for (int line = static_cast<int>(std::ceil(f_lo * P)); line <= static_cast<int>(f_hi * P); ++line) {
+    const double ph = phase(rng);
+    spectrum[static_cast<std::size_t>(line)] = std::polar(1.0, ph);
+    spectrum[static_cast<std::size_t>(P - line)] = std::polar(1.0, -ph);
+  }
+  std::vector<double> one;
+  Eigen::FFT<double> fft;
+  fft.inv(one, spectrum);
+  VectorXd u(N);
+  for (int k = 0; k < N; ++k) u[k] = one[static_cast<std::size_t>(k % P)];
+  return u / std::sqrt(u.squaredNorm() / N);
+}
+
+// A lightly damped resonance at f0 cycles/sample driven by u (a second-order recursion).
+VectorXd resonance(const VectorXd& u, double f0, double zeta) {
+  const double r = std::exp(-zeta * 2 * M_PI * f0), c = 2 * r * std::cos(2 * M_PI * f0 * std::sqrt(1 - zeta * zeta));
+  VectorXd y = VectorXd::Zero(u.size());
+  for (Eigen::Index k = 2; k < u.size(); ++k) y[k] = c * y[k - 1] - r * r * y[k - 2] + (1 - c + r * r) * u[k - 1];
+  return y;
+}
+
+VectorXd white(int N, double sigma, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, sigma);
+  VectorXd e(N);
+  for (auto& v : e) v = g(rng);
+  return e;
+}
+
+double rms(const VectorXd& x) { return std::sqrt((x.array() - x.mean()).square().mean()); }
+
+}  // namespace
+
+TEST(NoiseLevel, WhiteNoiseOnAFastSampledSignalFromTheOutputAlone) {
+  const int N = 8192;
+  const VectorXd y = 10 * multisine(N, 0.001, 0.02, 1, 1) + white(N, 0.01, 2);
+  const NoiseLevelEstimate e = estimate_noise(y);
+  EXPECT_EQ(e.method, NoiseMethod::output_spectrum);
+  EXPECT_NEAR(e.sigma / 0.01, 1.0, 0.15) << e.reason;
+}
+
+TEST(NoiseLevel, CoarseSamplingDoesNotTurnSignalIntoNoise) {
+  // ~9 samples per period of the resonance (the Silverbox's case): the second difference is signal.
+  const int N = 16384;
+  const VectorXd u = multisine(N, 0.002, 0.2, 1, 3);
+  const VectorXd clean = resonance(u, 0.11, 0.05);
+  const VectorXd noise = white(N, 1e-3 * rms(clean), 4);
+  const VectorXd y = clean + noise;
+  // The model is close but not exact: 3 % gain and a small lag.
+  VectorXd model = 1.03 * clean;
+  for (int k = N - 1; k > 0; --k) model[k] = 0.9 * model[k] + 0.1 * model[k - 1];
+  VectorXd d2(N - 2);
+  for (int k = 2; k < N; ++k) d2[k - 2] = y[k] - 2 * y[k - 1] + y[k - 2];
+  EXPECT_GT(rms(d2) / std::sqrt(6.0), 20 * rms(noise));  // what the old estimate read as noise
+  const NoiseLevelEstimate e = estimate_noise(y, model, u);
+  EXPECT_NE(e.method, NoiseMethod::repeats);
+  EXPECT_NEAR(e.sigma / rms(noise), 1.0, 0.3) << e.reason;
+}
+
+TEST(NoiseLevel, ColouredNoiseIsExtrapolatedUnderTheSignal) {
+  const int N = 16384;
+  const VectorXd u = multisine(N, 0.001, 0.05, 1, 5);
+  const VectorXd clean = resonance(u, 0.02, 0.1);
+  VectorXd noise = white(N, 1.0, 6);
+  for (int k = 1; k < N; ++k) noise[k] += 0.8 * noise[k - 1];  // AR(1), pole 0.8
+  noise *= 1e-2 * rms(clean) / rms(noise);
+  const NoiseLevelEstimate e = estimate_noise(clean + noise, 0.98 * clean, u);
+  EXPECT_EQ(e.method, NoiseMethod::residual_coloured) << e.reason;
+  EXPECT_NEAR(e.sigma / rms(noise), 1.0, 0.3) << e.reason;
+  // The white floor alone would read the noise's top band only: sqrt((1 - a) / (1 + a)) = 1/3.
+}
+
+TEST(NoiseLevel, QuantisedOutputGivesTheQuantisationFloor) {
+  const int N = 8192;
+  const VectorXd clean = 1e-3 * resonance(multisine(N, 0.001, 0.03, 1, 7), 0.01, 0.3);
+  const double q = rms(clean) / 300;
+  VectorXd y(N);
+  for (int k = 0; k < N; ++k) y[k] = q * std::round(clean[k] / q);
+  EXPECT_NEAR(lattice_step(y) / q, 1.0, 1e-6);
+  const NoiseLevelEstimate e = estimate_noise(y, clean);
+  EXPECT_NEAR(e.quantisation_step / q, 1.0, 1e-6);
+  EXPECT_NEAR(e.sigma / rms(y - clean), 1.0, 0.5) << e.reason;  // within a factor 2
+  EXPECT_GE(e.sigma, q / std::sqrt(12.0) * (1 - 1e-12));
+}
+
+TEST(NoiseLevel, RepeatedInputGivesTheNoiseFromTheRepeats) {
+  // Four periods of a multisine; a model that is plainly wrong does not matter to the repeats.
+  const int N = 16384;
+  const VectorXd u = multisine(N, 0.002, 0.2, 4, 8);
+  const VectorXd clean = resonance(u, 0.11, 0.05);
+  const VectorXd noise = white(N, 2e-3 * rms(clean), 9);
+  const NoiseLevelEstimate e = estimate_noise(clean + noise, 0.7 * clean, u);
+  EXPECT_EQ(e.method, NoiseMethod::repeats) << e.reason;
+  EXPECT_NE(e.reason.find("lag of 4096"), std::string::npos) << e.reason;
+  EXPECT_NEAR(e.sigma / rms(noise), 1.0, 0.1) << e.reason;
+  // A random (not repeating) input of the same spectrum: no repeats are invented.
+  EXPECT_EQ(detect_repeats(multisine(N, 0.002, 0.2, 1, 10)).matched, 0);
+}
+
+TEST(NoiseLevel, IsFreeOfUnits) {
+  const int N = 8192;
+  const VectorXd u = multisine(N, 0.001, 0.1, 1, 11);
+  const VectorXd clean = resonance(u, 0.05, 0.1);
+  const VectorXd y = clean + white(N, 1e-2 * rms(clean), 12);
+  const NoiseLevelEstimate a = estimate_noise(y, 1.01 * clean, u);
+  const NoiseLevelEstimate b = estimate_noise(1e6 * y, 1.01e6 * clean, 1e-3 * u);
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_NEAR(b.sigma / (1e6 * a.sigma), 1.0, 1e-9);
+}
+
+TEST(NoiseLevel, MostReliableMethodWins) {
+  std::vector<NoiseLevelEstimate> e(3);
+  e[0].method = NoiseMethod::residual_floor;
+  e[1].method = NoiseMethod::repeats;
+  e[2].method = NoiseMethod::repeats;
+  EXPECT_EQ(most_reliable(e), 1u);
+  e[1].method = NoiseMethod::output_spectrum;
+  EXPECT_EQ(most_reliable(e), 2u);
+}
+
+TEST(NoiseLevel, SilverboxRepeatsGiveTheNoiseOfV2) {
+  // Truth: 0.25-0.3 mV on V2 (README: the repeated stretches of the record).
+  const auto dir = test::shared_data("silverbox");
+  if (dir.empty()) GTEST_SKIP() << "silverbox data not found under ../shared/data (set SETS_SHARED_DIR)";
+  ModelFile m = load_model_file((dir / "nominal.json").string());
+  const Recording est = read_recording((dir / "estimation.csv").string());
+  // The linear model of the README (row A), input held.
+  m.parameter("g")->value = 1.8823e5;
+  m.parameter("c")->value = 43.34;
+  m.parameter("k")->value = 1.9766e5;
+  Simulator s(m, est, {10});
+  const VectorXd yhat = s.simulate(s.parameter_values()).outputs.col(0);
+  const VectorXd y = s.measured().col(0);
+  const VectorXd u = Eigen::Map<const VectorXd>(est.column("V1").data(), est.rows());
+  const NoiseLevelEstimate e = estimate_noise(y, yhat, u);
+  EXPECT_EQ(e.method, NoiseMethod::repeats) << e.reason;
+  EXPECT_GT(e.sigma, 0.25e-3 / 2) << e.reason;
+  EXPECT_LT(e.sigma, 0.30e-3 * 2) << e.reason;
+}
+
+TEST(NoiseLevel, EmpsPositionIsQuantisedAtTheEncoderStep) {
+  // q_meas is on a 5e-8 m lattice: its noise is q / sqrt(12) = 14.4 nm.
+  const auto file = test::shared_data("emps/estimation.csv");
+  if (file.empty()) GTEST_SKIP() << "emps data not found under ../shared/data (set SETS_SHARED_DIR)";
+  const Recording est = read_recording(file.string());
+  const VectorXd q = Eigen::Map<const VectorXd>(est.column("q_meas").data(), est.rows());
+  EXPECT_NEAR(lattice_step(q) / 5e-8, 1.0, 1e-6);
+  const NoiseLevelEstimate e = estimate_noise(q);
+  EXPECT_GT(e.sigma, 14.4e-9 / 2) << e.reason;
+  EXPECT_LT(e.sigma, 14.4e-9 * 2) << e.reason;
+}
