@@ -367,7 +367,7 @@ void actuator_candidates(const Context& k, const std::string& a) {
 }
 
 void sensor_candidates(const Context& k, std::size_t j) {
-  const auto [y, col] = k.model.outputs[j];
+  const std::string y = k.model.outputs[j].first, col = k.model.outputs[j].second;  // captured below (Clang 14)
   const auto& mv = k.measured.column(col);
   const double lo = *std::min_element(mv.begin(), mv.end()), hi = *std::max_element(mv.begin(), mv.end());
   const double range = positive(hi - lo, 1.0);
