@@ -23,7 +23,7 @@ using sets::app::Json;
 Json settings_json(const TvSettings& s, double scale) {
   Json out = {{"N", s.N}, {"h", sets::crane::kStep}, {"seed", s.seed}, {"time_limit_s", s.time_limit},
               {"node_limit", s.node_limit}, {"mu_rel", s.mu_rel}, {"box_rel", s.box_rel}, {"gap", s.gap},
-              {"formulation", s.formulation}, {"warm_start", s.warm}, {"scale", scale}, {"milp_eps", s.milp_eps},
+              {"formulation", s.formulation}, {"solver", s.solver}, {"grid", s.grid}, {"warm_start", s.warm}, {"scale", scale}, {"milp_eps", s.milp_eps},
               {"plant", s.plant}, {"relinearise", s.relinearise}};
   Json input = {{"kind", s.input}, {"amplitude_bound", 1.0}};
   if (s.input == "square") input["period_s"] = 4.0;
@@ -67,6 +67,14 @@ int main(int argc, char** argv) {
   app.add_option("--gap", s.gap, "MILP relative gap")->check(CLI::PositiveNumber);
   app.add_option("--formulation", s.formulation, "MILP binaries: single (one per jump) or paper (two, eq. 12)")
       ->check(CLI::IsMember({"single", "paper"}));
+  app.add_option("--solver", s.solver,
+                 "how (14) is solved: jump (branch and bound over jump patterns with certified bounds, the "
+                 "default) or glpk (the big-M MILP (12)-(14) in GLPK, for comparison; --formulation applies)")
+      ->check(CLI::IsMember({"jump", "glpk"}));
+  app.add_option("--grid", s.grid,
+                 "the paper's quantized approximation: jumps only every GRID samples (1 = every sample, (14) "
+                 "as written)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("!--no-warm-start", s.warm, "do not start the MILP from the l-inf solution");
   app.add_option("--case", only, "run only this case of the selected table(s) (0-based)")->check(CLI::NonNegativeNumber);
   app.add_option("--scale", scale,
@@ -91,7 +99,7 @@ int main(int argc, char** argv) {
                  "re-linearise (1) around the l-inf estimate this many times (sequential LP; not in the paper; "
                  "0 = the paper's single expansion around pi = 0); the MILP uses the last linearisation")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--verbose", s.verbose, "GLPK branch-and-cut log");
+  app.add_flag("--verbose", s.verbose, "progress of (14): the jump search every 2 s, or GLPK's branch-and-cut log");
   if (const auto code = cli.parse(argc, argv)) return *code;
   return cli.run([&] {
     if (s.relinearise > 0 && s.plant == "biaffine")

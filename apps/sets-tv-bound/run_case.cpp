@@ -105,6 +105,8 @@ Json run_case(const sets::crane::Case& c, const TvSettings& s) {
     so.epsilon = s.milp_eps == "oracle" ? Eigen::VectorXd::Constant(1, true_residual(data, pi, window)) : linf.epsilon;
     so.formulation = s.formulation == "paper" ? sets::SparseFormulation::paper : sets::SparseFormulation::single_binary;
     so.milp = {s.time_limit, s.gap, s.verbose, s.node_limit};
+    so.solver = s.solver == "glpk" ? sets::SparseSolver::glpk_big_m : sets::SparseSolver::jump_search;
+    so.grid = s.grid;
     if (s.warm) so.start = linf.pi;
     const auto m = sets::sparse_bound(data, so);
     const Eigen::VectorXd rms = sets::rms_tracking_error(m.pi, pi);

@@ -105,9 +105,12 @@ BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Ei
   // Column block j: pi(j) enters x(j+1) through M_j = P (I (x) zeta(j)) + D + Q (I (x) u(j)),
   // then propagates with A(j+1), A(j+2), ..., so block (k, j) = C A(k-1) ... A(j+1) M_j for k > j.
   r.xi = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N + 1) * l, static_cast<Eigen::Index>(N) * q);
+  r.transition = Ak;
+  r.output_map = model.C;
   for (int j = 0; j < N; ++j) {
     Eigen::MatrixXd G = model.P * kron_identity(q, r.zeta.row(j).transpose()) + model.D +
                         model.Q * kron_identity(q, u.row(j).transpose());
+    r.input_map.push_back(G);
     for (int k = j + 1; k <= N; ++k) {
       r.xi.block(static_cast<Eigen::Index>(k) * l, static_cast<Eigen::Index>(j) * q, l, q) = model.C * G;
       if (k < N) G = Ak[static_cast<std::size_t>(k)] * G;

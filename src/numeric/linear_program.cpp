@@ -197,13 +197,38 @@ Sense LinearProgram::sense() const { return impl_->sense; }
 
 void LinearProgram::reset_basis() { glp_std_basis(impl_->lp); }
 
-LpSolution LinearProgram::solve() {
+LpBasis LinearProgram::basis() const {
+  LpBasis b;
+  b.rows.resize(static_cast<std::size_t>(impl_->m()));
+  b.cols.resize(static_cast<std::size_t>(impl_->n()));
+  for (int i = 0; i < impl_->m(); ++i) b.rows[static_cast<std::size_t>(i)] = static_cast<unsigned char>(glp_get_row_stat(impl_->lp, i + 1));
+  for (int j = 0; j < impl_->n(); ++j) b.cols[static_cast<std::size_t>(j)] = static_cast<unsigned char>(glp_get_col_stat(impl_->lp, j + 1));
+  return b;
+}
+
+void LinearProgram::set_basis(const LpBasis& b) {
+  if (b.rows.size() != static_cast<std::size_t>(impl_->m()) || b.cols.size() != static_cast<std::size_t>(impl_->n()))
+    throw InputError("LinearProgram::set_basis: the basis is for another problem size");
+  // GLPK's setters replace a non-basic status the current bounds do not allow by the one they do.
+  for (int i = 0; i < impl_->m(); ++i) glp_set_row_stat(impl_->lp, i + 1, b.rows[static_cast<std::size_t>(i)]);
+  for (int j = 0; j < impl_->n(); ++j) glp_set_col_stat(impl_->lp, j + 1, b.cols[static_cast<std::size_t>(j)]);
+}
+
+LpSolution LinearProgram::solve() { return solve(LpSolveOptions{}); }
+
+LpSolution LinearProgram::solve(const LpSolveOptions& options) {
   glp_prob* lp = impl_->lp;
   if (impl_->n() == 0) throw InputError("LinearProgram::solve: no variables");
   glp_smcp parm;
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
   parm.meth = GLP_DUALP;  // dual simplex suits re-solves after objective or bound changes
+  if (options.long_step) parm.r_test = GLP_RT_FLIP;
+  if (options.cutoff) {
+    if (std::isnan(*options.cutoff)) throw InputError("LinearProgram::solve: the cutoff is NaN");
+    if (impl_->sense == Sense::minimize) parm.obj_ul = *options.cutoff;
+    else parm.obj_ll = *options.cutoff;
+  }
   // GLPK can cycle on degenerate, badly scaled problems (seen in the safe-bound property test):
   // a healthy solve needs a few times (rows + columns) iterations, so cap it far above that.
   parm.it_lim = 10000 + 50 * (impl_->m() + impl_->n());
@@ -223,7 +248,8 @@ LpSolution LinearProgram::solve() {
     parm.meth = GLP_PRIMAL;
     rc = glp_simplex(lp, &parm);
   }
-  if (rc != 0)
+  const bool cut = options.cutoff && (rc == GLP_EOBJUL || rc == GLP_EOBJLL);
+  if (rc != 0 && !cut)
     throw NumericalError("LP solver failed (GLPK glp_simplex code " + std::to_string(rc) +
                          ") on a problem with " + std::to_string(impl_->m()) + " rows and " +
                          std::to_string(impl_->n()) + " columns");
@@ -232,7 +258,9 @@ LpSolution LinearProgram::solve() {
   const int status = glp_get_status(lp);
   const int prim = glp_get_prim_stat(lp);
   const int dual = glp_get_dual_stat(lp);
-  if (status == GLP_OPT) {
+  if (cut) {
+    s.status = LpStatus::cutoff;
+  } else if (status == GLP_OPT) {
     s.status = LpStatus::optimal;
   } else if (status == GLP_NOFEAS || prim == GLP_NOFEAS) {
     s.status = LpStatus::infeasible;
@@ -287,7 +315,7 @@ LpSolution LinearProgram::solve_exact() {
 }
 
 double LinearProgram::safe_bound(const LpSolution& solution) const {
-  if (solution.status != LpStatus::optimal)
+  if (solution.status != LpStatus::optimal && solution.status != LpStatus::cutoff)
     return impl_->sense == Sense::minimize ? -inf : inf;
   if (solution.row_dual.size() != impl_->m())
     throw InputError("LinearProgram::safe_bound: solution does not belong to this problem");
@@ -402,6 +430,7 @@ const char* to_string(LpStatus s) {
   switch (s) {
     case LpStatus::optimal: return "optimal";
     case LpStatus::infeasible: return "infeasible";
+    case LpStatus::cutoff: return "stopped at the objective cutoff";
     default: return "unbounded";
   }
 }

@@ -85,6 +85,51 @@ TEST(LinearProgram, SolvesSmallProblemAndWarmStarts) {
   EXPECT_NEAR(s.objective, 0.0, 1e-12);
 }
 
+TEST(LinearProgram, BasisRestoresAnEarlierOptimumAndCutoffStopsEarly) {
+  // min sum x_i  s.t.  x_i + x_{i+1} >= 1 (a chain), 0 <= x <= 1: optimum n/2 for even n.
+  const int n = 40;
+  LinearProgram lp(n);
+  for (int i = 0; i < n; ++i) lp.set_variable_bounds(i, 0, 1);
+  for (int i = 0; i + 1 < n; ++i) lp.add_row(std::vector<std::pair<int, double>>{{i, 1.0}, {i + 1, 1.0}}, 1, inf);
+  lp.set_objective(Eigen::VectorXd::Ones(n), Sense::minimize);
+  const auto first = lp.solve();
+  ASSERT_EQ(first.status, LpStatus::optimal);
+  const sets::LpBasis optimal = lp.basis();
+  ASSERT_EQ(optimal.rows.size(), static_cast<std::size_t>(n - 1));
+  ASSERT_EQ(optimal.cols.size(), static_cast<std::size_t>(n));
+  // Change the problem, solve it, restore the first basis: the original re-solves in 0 iterations.
+  lp.set_variable_bounds(0, 1, 1);
+  lp.set_variable_bounds(n - 1, 1, 1);
+  const auto changed = lp.solve();
+  ASSERT_EQ(changed.status, LpStatus::optimal);
+  lp.set_variable_bounds(0, 0, 1);
+  lp.set_variable_bounds(n - 1, 0, 1);
+  lp.set_basis(optimal);
+  const auto again = lp.solve();
+  ASSERT_EQ(again.status, LpStatus::optimal);
+  EXPECT_EQ(again.iterations, changed.iterations);  // GLPK's count is cumulative: no new iteration
+  EXPECT_NEAR(again.objective, first.objective, 1e-12);
+  // From a cold start, a cutoff far below the optimum stops the dual simplex early, and the safe
+  // bound of the point reached still bounds the optimum from below.
+  lp.reset_basis();
+  sets::LpSolveOptions cut;
+  cut.cutoff = 1.0;
+  const auto stopped = lp.solve(cut);
+  if (stopped.status == LpStatus::cutoff) {
+    const double b = lp.safe_bound(stopped);
+    EXPECT_GT(b, 1.0 - 1e-9);
+    EXPECT_LE(b, first.objective + 1e-9);
+  } else {
+    EXPECT_EQ(stopped.status, LpStatus::optimal);
+  }
+  cut.cutoff = first.objective + 1;  // above the optimum: solved to the end
+  lp.reset_basis();
+  EXPECT_EQ(lp.solve(cut).status, LpStatus::optimal);
+  sets::LpBasis wrong;
+  wrong.rows.resize(3);
+  EXPECT_THROW(lp.set_basis(wrong), sets::InputError);
+}
+
 TEST(LinearProgram, ReportsInfeasibleAndUnbounded) {
   LinearProgram lp(1);
   lp.add_row(Eigen::VectorXd::Constant(1, 1.0), 2, inf);

@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace sets {
 
 /// The matrices of equation (1). P is n x nq, D is n x q, Q is n x qp.
@@ -52,6 +54,12 @@ struct BiaffineRegression {
   Eigen::VectorXd upsilon;  // constant term, (N+1) l: C zeta(k) stacked for (2), C zeta - Xi Pi_bar otherwise
   Eigen::MatrixXd xi;       // (N+1) l x N q, block lower triangular (first block row is zero)
   Eigen::MatrixXd pi_bar;   // linearisation point, N x q (zero for (2))
+  /// The recursion behind Xi, for solvers that prefer its sparse rows to the dense Xi (filled by
+  /// biaffine_regression and linearised_regression; empty when Xi was built some other way):
+  ///   s(0) = 0,  s(k+1) = transition[k] s(k) + input_map[k] pi(k),  (Xi Pi)(k) = output_map s(k).
+  std::vector<Eigen::MatrixXd> transition;  // A(k), n x n, k = 0..N-1
+  std::vector<Eigen::MatrixXd> input_map;   // M_k, n x q, k = 0..N-1
+  Eigen::MatrixXd output_map;               // C, l x n
 
   int samples() const { return static_cast<int>(zeta.rows()) - 1; }  // N
 };

@@ -24,7 +24,8 @@ namespace sets {
 inline constexpr double inf = std::numeric_limits<double>::infinity();
 
 enum class Sense { minimize, maximize };
-enum class LpStatus { optimal, infeasible, unbounded };
+/// cutoff: a solve with LpSolveOptions::cutoff stopped early, the optimum being proven beyond it.
+enum class LpStatus { optimal, infeasible, unbounded, cutoff };
 
 struct LpSolution {
   LpStatus status = LpStatus::infeasible;
@@ -34,6 +35,17 @@ struct LpSolution {
   Eigen::VectorXd row_dual;      // multipliers of the rows, GLPK convention
   Eigen::VectorXd reduced_cost;  // c - A^T row_dual, as GLPK computed it
   int iterations = 0;
+};
+
+struct LpSolveOptions {
+  /// Stop a minimisation as soon as the dual simplex has proven the optimum above this value (a
+  /// maximisation: below it): status LpStatus::cutoff, and the solution carries the dual-feasible
+  /// point reached, from which safe_bound still gives a rigorous bound (about the cutoff or better).
+  /// Branch and bound uses it to drop a node without solving its LP to the end.
+  std::optional<double> cutoff;
+  /// GLPK's long-step (bound-flipping) ratio test in the dual simplex: far fewer iterations when
+  /// many variables and rows are boxed.
+  bool long_step = false;
 };
 
 enum class MilpStatus { optimal, feasible, infeasible, no_solution };
@@ -55,6 +67,13 @@ struct MilpSolution {
   double seconds = 0;
   long nodes = 0;         // branch-and-bound nodes created
   Eigen::VectorXd x;
+};
+
+/// A simplex basis: the status of every row and column (basic, or non-basic at which bound), to
+/// restart a later solve of the same problem from it (e.g. a branch-and-bound child from its
+/// parent's optimal basis). Opaque: take it from basis(), give it to set_basis().
+struct LpBasis {
+  std::vector<unsigned char> rows, cols;
 };
 
 /// A linear program  min/max c^T x  s.t.  row_lo <= A x <= row_hi,  col_lo <= x <= col_hi.
@@ -100,11 +119,17 @@ class LinearProgram {
 
   /// Simplex from the last basis (warm start). Throws NumericalError if GLPK fails.
   LpSolution solve();
+  LpSolution solve(const LpSolveOptions& options);
   /// GLPK's exact rational simplex on the stored (double) data: slow, but its verdict on
   /// feasibility is rigorous. Used to certify that an LP is empty.
   LpSolution solve_exact();
   /// Forgets the basis: the next solve starts cold (for benchmarks and recovery).
   void reset_basis();
+  /// The current basis, and restoring one taken from this problem (same rows and columns; bounds
+  /// may have changed since: a status the new bounds do not allow is corrected). Throws
+  /// InputError if the sizes differ.
+  LpBasis basis() const;
+  void set_basis(const LpBasis& basis);
   /// Branch and cut with a time limit; optional starting incumbent (e.g. an LP-rounded point).
   MilpSolution solve_milp(const MilpOptions& options = {},
                           const std::optional<Eigen::VectorXd>& start = std::nullopt);

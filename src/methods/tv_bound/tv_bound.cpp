@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sets/core/error.hpp"
+#include "methods/tv_bound/jump_search.hpp"
 
 namespace sets {
 
@@ -172,6 +173,16 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   if (has_start && (o.start.rows() != N || o.start.cols() != q))
     throw InputError("sparse_bound: the start trajectory is " + std::to_string(o.start.rows()) + " x " +
                      std::to_string(o.start.cols()) + ", expected " + std::to_string(N) + " x " + std::to_string(q));
+  if (o.grid < 1) throw InputError("sparse_bound: grid must be >= 1 (1 = a jump may occur at every sample)");
+  if (!(o.epsilon_slack >= 0) || !std::isfinite(o.epsilon_slack))
+    throw InputError("sparse_bound: epsilon_slack must be finite and >= 0");
+  if (o.solver == SparseSolver::jump_search) {
+    TvBoundResult r = detail::jump_search(data, o);
+    r.epsilon = o.epsilon;
+    fill_result(data, stack_samples(r.pi), o.mu, r);
+    r.seconds = seconds_since(t0);
+    return r;
+  }
   const WindowNormBall ball = data.ball();
   const Eigen::VectorXd offset = stack_samples(data.y) - data.regression.upsilon;
   const Eigen::VectorXd eps = o.epsilon * (1 + o.epsilon_slack);
@@ -187,6 +198,10 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   const int first_bin = lp.add_variables((N - k0) * q * per, 0, 1);
   for (int j = first_bin; j < lp.num_variables(); ++j) lp.set_integer(j);
   auto bin = [&](int k, int i, int which) { return first_bin + ((k - k0) * q + i) * per + which; };
+  for (int k = k0; k < N; ++k)  // the quantized approximation: no jump off the grid
+    if (k % o.grid != 0)
+      for (int i = 0; i < q; ++i)
+        for (int w = 0; w < per; ++w) lp.set_variable_bounds(bin(k, i, w), 0, 0);
   for (int k = k0; k < N; ++k)
     for (int i = 0; i < q; ++i) {
       const double mu = o.mu[i], M = (k == 0 ? 1.0 : 2.0) * o.max_abs[i] + mu;
@@ -224,7 +239,7 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
     for (int k = k0; k < N; ++k)
       for (int i = 0; i < q; ++i) {
         const double d = o.start(k, i) - (k > 0 ? o.start(k - 1, i) : 0.0);
-        if (std::abs(d) <= o.mu[i]) continue;
+        if (std::abs(d) <= o.mu[i] || k % o.grid != 0) continue;
         if (per == 1) x[bin(k, i, 0)] = 1;
         else x[bin(k, i, d > 0 ? 0 : 1)] = 1;
       }

@@ -320,6 +320,7 @@ TEST(TvBound, PaperAndSingleBinaryFormulationsAgree) {
   o.epsilon = lin.epsilon;
   o.milp.time_limit_s = 600;  // a hang guard; the node limit decides, independent of load
   o.milp.node_limit = 50000;
+  o.solver = sets::SparseSolver::glpk_big_m;
   const auto single = sets::sparse_bound(data, o);
   o.formulation = sets::SparseFormulation::paper;
   const auto paper = sets::sparse_bound(data, o);
@@ -328,6 +329,66 @@ TEST(TvBound, PaperAndSingleBinaryFormulationsAgree) {
   EXPECT_NEAR(single.objective, paper.objective, 1e-3 * (1 + std::abs(paper.objective)));
   // Both satisfy the window-norm constraint with the given eps.
   EXPECT_LE(data.ball().norms(sets::stack_samples(single.residual))[0], lin.epsilon[0] * (1 + 1e-6) + 1e-9);
+}
+
+TEST(TvBound, JumpSearchAndGlpkMilpFindTheSameOptimum) {
+  // Two solvers of (14), both run to a proven optimum on small problems with two steps: their
+  // objectives agree, the jump search's certified lower bound lies below GLPK's optimum, and its
+  // trajectory keeps the noise bound and the box.
+  std::mt19937 rng(23);
+  const int N = 14;
+  for (int run = 0; run < 4; ++run) {
+    Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
+    const int a = std::uniform_int_distribution<int>(2, N - 3)(rng), b = std::uniform_int_distribution<int>(2, N - 3)(rng);
+    pi.block(a, 1, N - a, 1).setConstant(0.6);
+    pi.block(b, 2, N - b, 1).setConstant(-0.4);
+    const auto data = small_data(pi, 0.01, 300 + run, 4);
+    const auto lin = sets::linf_bound(data);
+    sets::SparseBoundOptions o;
+    o.mu = Eigen::Vector3d::Constant(1e-3);
+    o.max_abs = Eigen::Vector3d::Constant(1.0);
+    o.epsilon = lin.epsilon;
+    o.milp.time_limit_s = 600;  // hang guards; the node limits decide
+    o.milp.node_limit = 50000;
+    o.start = lin.pi;
+    const auto jump = sets::sparse_bound(data, o);
+    o.solver = sets::SparseSolver::glpk_big_m;
+    const auto glpk = sets::sparse_bound(data, o);
+    ASSERT_TRUE(jump.status == sets::MilpStatus::optimal) << "run " << run;
+    ASSERT_TRUE(glpk.status == sets::MilpStatus::optimal) << "run " << run;
+    const double tol = 2e-4 * (1 + std::abs(glpk.objective));
+    EXPECT_NEAR(jump.objective, glpk.objective, tol) << "run " << run;
+    EXPECT_LE(jump.best_bound, glpk.objective + tol) << "run " << run;
+    EXPECT_LE(data.ball().norms(sets::stack_samples(jump.residual))[0], o.epsilon[0] * (1 + 1e-6) + 1e-9);
+    EXPECT_LE(jump.pi.cwiseAbs().maxCoeff(), 1.0 + 1e-9);
+  }
+}
+
+TEST(TvBound, CoarserJumpGridIsARestriction) {
+  // The quantized approximation: jumps only where k is a multiple of the grid. Its optimum is
+  // feasible for (14), so it is no better than (14)'s; every jump lies on the grid.
+  const int N = 18;
+  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
+  pi.block(7, 1, N - 7, 1).setConstant(0.5);  // off the grid of 3
+  const auto data = small_data(pi, 0.01, 41, 4);
+  const auto lin = sets::linf_bound(data);
+  sets::SparseBoundOptions o;
+  o.mu = Eigen::Vector3d::Constant(1e-3);
+  o.max_abs = Eigen::Vector3d::Constant(1.0);
+  o.epsilon = lin.epsilon;
+  o.milp.time_limit_s = 600;
+  o.milp.node_limit = 50000;
+  const auto fine = sets::sparse_bound(data, o);
+  for (auto solver : {sets::SparseSolver::jump_search, sets::SparseSolver::glpk_big_m}) {
+    o.solver = solver;
+    o.grid = 3;
+    const auto coarse = sets::sparse_bound(data, o);
+    ASSERT_TRUE(coarse.status == sets::MilpStatus::optimal);
+    EXPECT_GE(coarse.objective, fine.objective - 1e-4 * (1 + fine.objective));
+    for (const auto& c : coarse.changes) EXPECT_EQ(c.sample % 3, 0) << "jump at " << c.sample;
+  }
+  o.grid = 0;
+  EXPECT_THROW(sets::sparse_bound(data, o), sets::InputError);
 }
 
 namespace {

@@ -49,9 +49,9 @@ struct TvBoundResult {
   double seconds = 0;
   // MILP only (for the LP: status optimal, gap 0).
   MilpStatus status = MilpStatus::optimal;
-  double best_bound = 0;
-  double gap = 0;
-  long nodes = 0;  // branch-and-bound nodes
+  double best_bound = 0;  // jump_search: certified lower bound on the optimum; glpk_big_m: GLPK's
+  double gap = 0;         // (objective - best_bound) / max(1, |objective|)
+  long nodes = 0;         // branch-and-bound nodes (jump_search: LPs solved)
 };
 
 struct LinfBoundOptions {
@@ -80,6 +80,19 @@ Eigen::VectorXd paper_epsilon_weight(const TvBoundData& data);
 /// explains the data with the given epsilon, and NumericalError if GLPK fails.
 TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& options = {});
 
+/// How (14) is solved. Both solve the same problem (same optimum); they differ in whether they
+/// can prove it.
+enum class SparseSolver {
+  /// Best-first branch and bound over sign-monotone jump patterns with certified LP bounds
+  /// (docs/methods/tv-bound.md). `best_bound` is a rigorous lower bound on the optimum.
+  jump_search,
+  /// The big-M MILP handed to GLPK's branch and cut (`formulation` picks (12)-(13) as printed or
+  /// one binary per jump). Kept for comparison: its relaxation is nearly empty, so it rarely
+  /// closes the gap on the crane; its best bound is GLPK's floating-point one.
+  glpk_big_m,
+};
+
+/// The binaries of the glpk_big_m solver.
 enum class SparseFormulation {
   paper,          // two binaries per (sample, parameter): equations (12)-(13) as printed
   single_binary,  // one binary: -mu - M d <= Delta pi <= mu + M d (same optimum, no sign symmetry)
@@ -95,7 +108,15 @@ struct SparseBoundOptions {
   /// eps is inflated by this relative amount so the l-inf optimum stays feasible despite rounding.
   double epsilon_slack = 1e-7;
   bool initial_difference = true;
-  SparseFormulation formulation = SparseFormulation::single_binary;
+  /// The paper's quantized approximation on a coarser time grid: jumps (|Delta pi| > mu) only at
+  /// samples k that are multiples of `grid`; between them pi drifts by at most mu per sample.
+  /// 1 = every sample, (14) as written. A coarser grid solves faster and its optimum is an upper
+  /// bound of (14)'s (a restriction).
+  int grid = 1;
+  SparseSolver solver = SparseSolver::jump_search;
+  SparseFormulation formulation = SparseFormulation::single_binary;  // glpk_big_m only
+  /// Limits and tolerance. jump_search: node_limit counts LPs, relative_gap stops the search
+  /// when (objective - bound) / max(1, objective) reaches it; the time limit is wall clock.
   MilpOptions milp{60, 1e-4, false};
   /// Warm start: a trajectory (N x q), e.g. the l-inf estimate; T, the binaries and the peak are
   /// completed from it. Empty = none. Ignored by GLPK if infeasible.
@@ -103,8 +124,9 @@ struct SparseBoundOptions {
 };
 
 /// Equation (14): min 1^T Sigma + ||(I (x) F) Pi||_inf s.t. (13) and the window-norm ball with
-/// the given eps. Throws InputError on bad input, NumericalError if GLPK fails; a time-limited
-/// run returns its incumbent with status feasible and the gap.
+/// the given eps. Throws InputError on bad input, NumericalError if GLPK fails or no solution is
+/// found within the limits; a run stopped by a limit returns its incumbent with status feasible,
+/// the best lower bound and the gap.
 TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& options);
 
 /// sqrt(mean_k (est_i(k) - truth_i(k))^2) per column.
