@@ -190,7 +190,9 @@ ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Cand
     }
     (void)q0;
   }
-  for (std::size_t r = 0; r < std::min<std::size_t>(2, done.size()); ++r) {
+  // Multi-start in the nonlinear parameters: the best three grid points, each with its
+  // least-squares linear coefficients and (for the best) the full least-squares step.
+  for (std::size_t r = 0; r < std::min<std::size_t>(3, done.size()); ++r) {
     h.starts.push_back(done[r].start);
     if (r == 0) h.starts.push_back(done[r].stepped);
   }
