@@ -6,6 +6,7 @@
 #include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/state_enclosure.hpp"
 
 namespace {
 
@@ -13,6 +14,7 @@ struct Data {
   Eigen::MatrixXd u, y;
   std::vector<sets::ObservabilityRow> rows;
   Eigen::VectorXd truth;
+  sets::GuaranteedSetAssumptions assumptions;  // uniform noise bound and the FIR tail, as the app
 };
 
 const Data& data() {
@@ -21,6 +23,8 @@ const Data& data() {
     Data r;
     std::mt19937_64 rng(1);
     const auto d = sets::farah::simulate(s, 1000, 20.0, rng);  // random binary input, 20 dB output noise, as in the app
+    r.assumptions.noise_bound = d.largest_noise * (1 + 1e-9);
+    r.assumptions.tail_bound = sets::fir_tail_bound(s, 20, 1.0);
     r.u = d.u;
     r.y = d.y;
     r.rows = sets::select_rows(s.A, s.C, sets::RowSelection::output_major);
@@ -77,6 +81,26 @@ void BM_FpsPui(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(sets::pui(fps));
 }
 BENCHMARK(BM_FpsPui)->Unit(benchmark::kMillisecond);
+
+// The guaranteed set: state enclosures (verified Gram matrix, Markov ellipsoids, functionals),
+// the interval-regressor FPS and the membership of the truth; then its PUIs.
+void BM_GuaranteedFps(benchmark::State& state) {
+  const auto id = identify();
+  for (auto _ : state) {
+    const auto X = sets::enclose_states(id, data().u, data().y, data().assumptions);
+    const auto fps = sets::guaranteed_fps(id, data().u, data().y, X, data().assumptions.noise_bound);
+    benchmark::DoNotOptimize(fps.contains(data().truth));
+  }
+}
+BENCHMARK(BM_GuaranteedFps)->Unit(benchmark::kMillisecond);
+
+void BM_GuaranteedPui(benchmark::State& state) {
+  const auto id = identify();
+  const auto X = sets::enclose_states(id, data().u, data().y, data().assumptions);
+  const auto fps = sets::guaranteed_fps(id, data().u, data().y, X, data().assumptions.noise_bound);
+  for (auto _ : state) benchmark::DoNotOptimize(sets::pui(fps));
+}
+BENCHMARK(BM_GuaranteedPui)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

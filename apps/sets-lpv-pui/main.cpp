@@ -70,7 +70,7 @@ int run_data(const std::string& path, const std::string& ucol, const std::string
   js["orthants"] = sets::app::Json::array();
   for (const auto& o : res.pui.orthants) {
     std::string signs;
-    for (int s : o.signs) signs += s > 0 ? '+' : '-';
+    for (int s : o.signs) signs += s > 0 ? '+' : s < 0 ? '-' : '*';  // '*': free (exact regressors)
     std::cout << ' ' << (signs.empty() ? "(all)" : signs) << '=' << sets::to_string(o.status);
     js["orthants"].push_back({{"signs", signs}, {"status", sets::to_string(o.status)}});
   }

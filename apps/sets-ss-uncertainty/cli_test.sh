@@ -14,7 +14,10 @@ awk 'BEGIN { srand(7); T = 600; print "u1,u2,y1,y2"; x1 = 0; x2 = 0;
 data=(--data "$dir/good.csv" --inputs u1,u2 --outputs 3,4 --order 2 --past 8)
 
 check "Monte Carlo" 0 "Table I" -- "$app" --runs 4 --threads 2 --json "$dir/mc.json"
-grep -q '"fps_full"' "$dir/mc.json" || { echo "FAIL Monte Carlo JSON"; fail=1; }
+grep -q '"estimate_fps_full"' "$dir/mc.json" || { echo "FAIL Monte Carlo JSON"; fail=1; }
+grep -q '"guaranteed_fps_full"' "$dir/mc.json" || { echo "FAIL Monte Carlo JSON: no guaranteed set"; fail=1; }
+check "Monte Carlo, bounded noise" 0 "runs that met the assumption: 4 of 4" -- "$app" --runs 4 --noise uniform
+check "bad --noise" 1 "--noise" -- "$app" --runs 1 --noise laplace
 check "data, columns by name and number" 0 "FPS PUI" -- "$app" "${data[@]}" --json "$dir/d.json"
 grep -q '"pui_guaranteed"' "$dir/d.json" || { echo "FAIL data JSON"; fail=1; }
 check "data without --order" 1 "--order" -- "$app" --data "$dir/good.csv" --inputs 1,2 --outputs 3,4

@@ -102,6 +102,16 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--fps-pui-runs", st.fps_pui_runs, "compute FPS PUIs by LP in the first K runs (-1: all)")
       ->check(CLI::Range(-1, 100000000));
+  app.add_option("--noise", st.noise, "output noise of the simulation: gaussian (the paper) or uniform (bounded)")
+      ->check(CLI::IsMember({"gaussian", "uniform"}));
+  app.add_option("--noise-bound-sigmas", st.noise_bound_sigmas,
+                 "Gaussian noise: the noise bound the guaranteed set assumes, in standard deviations")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--guaranteed-pui-runs", st.guaranteed_pui_runs,
+                 "PUIs of the guaranteed set by LP in the first K runs (-1: all; default 0: membership only, its LPs "
+                 "with interval regressors cost 20 ms to seconds per run)")
+      ->check(CLI::Range(-1, 100000000));
+  app.add_flag("!--no-guaranteed", st.guaranteed, "skip the guaranteed set");
   cli.add_output_file("--json", st.json_path, "write results as JSON");
   app.add_option("--data", st.data, "CSV file with measured inputs and outputs (instead of the simulation)");
   app.add_option("--inputs", st.inputs, "input columns of --data (1-based numbers or header names)");

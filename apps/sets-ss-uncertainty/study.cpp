@@ -57,13 +57,29 @@ struct RunResult {
   bool pui_done = false;
   Eigen::VectorXd pui_halfwidth, box_halfwidth;
   std::vector<Verdict> projection, slice;  // per pair
+  // The guaranteed set: membership of the truth, its PUI box, whether the run met the assumption
+  // (Gaussian noise can exceed the bound) and whether the data contradicted the assumptions.
+  Verdict g_full = inside, g_pui = inside;
+  bool g_pui_done = false, assumption_held = true, contradicted = false;
+  Eigen::VectorXd g_halfwidth, g_state_radius;
 };
 
+// The noise bound the guaranteed set assumes: sqrt(3) sigma for uniform noise, k sigma for
+// Gaussian; 1e-9 relative covers the rounding of y + v and of the simulation.
+Eigen::VectorXd assumed_noise_bound(const Settings& st, const Eigen::VectorXd& sigma) {
+  const double k = st.noise == "uniform" ? std::sqrt(3.0) : st.noise_bound_sigmas;
+  return sigma * k * (1 + 1e-9);
+}
+
 RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const std::vector<sets::ObservabilityRow>& rows,
-                  const Eigen::VectorXd& truth, const std::vector<std::pair<int, int>>& pairs, int run) {
+                  const Eigen::VectorXd& truth, const std::vector<std::pair<int, int>>& pairs,
+                  const Eigen::VectorXd& tail, int run) {
   // One generator per run: the result does not depend on the number of threads.
   std::mt19937_64 rng(st.seed * 1000003ULL + static_cast<unsigned long long>(run));
-  const auto [u, y] = sets::farah::simulate(sys, st.samples, st.snr_db, rng);
+  const auto noise = st.noise == "uniform" ? sets::farah::Noise::uniform : sets::farah::Noise::gaussian;
+  const auto data = sets::farah::simulate(sys, st.samples, st.snr_db, rng, noise);
+  const Eigen::MatrixXd& u = data.u;
+  const Eigen::MatrixXd& y = data.y;
   sets::SsUncertaintyOptions o;
   o.identification.order = 3;
   o.identification.past = st.past;
@@ -71,6 +87,14 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
   o.identification.rows = rows;
   o.level = st.level;
   o.estimate_fps_pui = st.fps_pui_runs < 0 || run < st.fps_pui_runs;
+  const Eigen::VectorXd vbar = assumed_noise_bound(st, data.sigma);
+  if (st.guaranteed) {
+    sets::GuaranteedSetAssumptions a;
+    a.noise_bound = vbar;
+    a.tail_bound = tail;  // x(0) = 0 and |u| = 1: the FIR tail of the true system beyond p
+    o.guaranteed = a;
+    o.guaranteed_pui = st.guaranteed_pui_runs < 0 || run < st.guaranteed_pui_runs;
+  }
   const auto result = sets::ss_uncertainty(u, y, o);
   const auto& dom = result.estimate_level_set;
   RunResult r;
@@ -92,6 +116,21 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
     r.fps_pui = p.empty ? outside : (sets::contains(p.box, truth) ? inside : outside);
     r.pui_halfwidth = p.empty ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
   }
+  r.assumption_held = (data.largest_noise.array() <= vbar.array()).all();
+  if (result.guaranteed_fps) {
+    r.contradicted = !result.state_enclosure->contradictions.empty();
+    r.g_full = verdict(result.guaranteed_fps->contains(truth));
+    const auto& X = result.state_enclosure->states;
+    r.g_state_radius = Eigen::VectorXd::Zero(X.rows());
+    for (Eigen::Index k = 0; k < X.rows(); ++k)
+      for (Eigen::Index c = 0; c < X.cols(); ++c) r.g_state_radius[k] += sets::radius(X(k, c)) / X.cols();
+  }
+  if (result.guaranteed_pui) {
+    const auto& p = *result.guaranteed_pui;
+    r.g_pui_done = true;
+    r.g_pui = p.empty ? outside : (sets::contains(p.box, truth) ? inside : outside);
+    r.g_halfwidth = p.empty ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
+  }
   return r;
 }
 
@@ -106,6 +145,7 @@ int monte_carlo(const Settings& st) {
   const auto names = structure.parameter_names();
   const int m = static_cast<int>(truth.size());
   if (st.past < 3) throw sets::InputError("--past " + std::to_string(st.past) + " is smaller than the order 3");
+  const Eigen::VectorXd tail = sets::fir_tail_bound(sys, st.past, 1.0);
   std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < m; ++i)
     for (int j = i + 1; j < m; ++j) pairs.push_back({i, j});
@@ -114,7 +154,7 @@ int monte_carlo(const Settings& st) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();  // process CPU time (all threads)
   const auto failure = sets::app::run_parallel(static_cast<std::size_t>(st.runs), static_cast<unsigned>(st.threads),
-                                               [&](std::size_t k) { results[k] = one_run(st, sys, rows, truth, pairs, static_cast<int>(k)); });
+                                               [&](std::size_t k) { results[k] = one_run(st, sys, rows, truth, pairs, tail, static_cast<int>(k)); });
   if (failure) std::rethrow_exception(failure->error);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
@@ -149,12 +189,30 @@ int monte_carlo(const Settings& st) {
     }
   }
   if (pui_runs) pui_hw /= pui_runs;
+  // The guaranteed set.
+  int g_out = 0, g_out_held = 0, g_pui_runs = 0, g_pui_out = 0, held_runs = 0, contradicted_runs = 0;
+  Eigen::VectorXd g_hw = Eigen::VectorXd::Zero(m), g_rad = Eigen::VectorXd::Zero(3);
+  for (const auto& r : results) {
+    if (!st.guaranteed) break;
+    held_runs += r.assumption_held;
+    contradicted_runs += r.contradicted;
+    g_out += r.g_full == outside;
+    g_out_held += r.g_full == outside && r.assumption_held;
+    g_rad += r.g_state_radius / st.runs;
+    if (r.g_pui_done) {
+      ++g_pui_runs;
+      g_pui_out += r.g_pui == outside;
+      g_hw += r.g_halfwidth;
+    }
+  }
+  if (g_pui_runs) g_hw /= g_pui_runs;
   double ell_mean = 0;
   for (const auto& r : results) ell_mean += r.ell / st.runs;
 
   std::cout << "sets-ss-uncertainty: Farah et al., Section V (3 states, 2 inputs, 2 outputs, D "
             << (st.estimate_d ? "estimated" : "= 0 known") << ")\n"
-            << "  " << st.runs << " runs, N = " << st.samples << ", random binary input, white Gaussian output noise at "
+            << "  " << st.runs << " runs, N = " << st.samples << ", random binary input, white " << (st.noise == "uniform" ? "uniform (bounded)" : "Gaussian")
+            << " output noise at "
             << st.snr_db << " dB SNR per channel, p = " << st.past << ", seed " << st.seed << "\n  rows of Gamma_1:";
   for (const auto& r : rows) std::cout << ' ' << sets::to_string(r);
   std::cout << "\n  residuals for l: " << sets::to_string(st.level.residuals) << ", "
@@ -194,17 +252,36 @@ int monte_carlo(const Settings& st) {
                       {"slice", sl.first}});
   }
   std::cout << "  full vector (ellipsoid):   " << std::setprecision(1) << 100 * full.first << " %\n"
-            << "  full vector (FPS |eps| <= l, guaranteed alternative): " << 100 * fps_full.first << " %\n";
+            << "  full vector (estimate FPS |eps| <= l, l read from the residuals): " << 100 * fps_full.first
+            << " %\n";
   if (pui_runs)
-    std::cout << "  FPS PUI box (LP, " << pui_runs << " runs): " << 100.0 * pui_out / pui_runs << " %\n";
+    std::cout << "  estimate FPS PUI box (LP, " << pui_runs << " runs): " << 100.0 * pui_out / pui_runs << " %\n";
+  if (st.guaranteed) {
+    std::cout << "\nGuaranteed set (true states enclosed from the data and the propagator, carried as interval regressors)\n"
+              << "  assumes |v_j(t)| <= " << std::setprecision(3)
+              << (st.noise == "uniform" ? std::sqrt(3.0) : st.noise_bound_sigmas)
+              << " sigma_j, x(0) = 0 and |u| <= 1 (FIR tail of the true system beyond p <= " << std::scientific
+              << std::setprecision(2) << tail.transpose() << ")" << std::fixed << std::setprecision(1) << "\n"
+              << "  runs that met the assumption: " << held_runs << " of " << st.runs << "\n"
+              << "  full vector outside: " << 100.0 * g_out / st.runs << " % (" << g_out << " runs, " << g_out_held
+              << " of them met the assumption)\n"
+              << "  runs whose data contradicted the assumptions: " << contradicted_runs << "\n";
+    if (g_pui_runs)
+      std::cout << "  PUI box outside (LP, " << g_pui_runs << " runs): " << 100.0 * g_pui_out / g_pui_runs << " %\n";
+    std::cout << "  mean state-enclosure radius:" << std::scientific << std::setprecision(3);
+    for (Eigen::Index k = 0; k < g_rad.size(); ++k) std::cout << ' ' << g_rad[k];
+    std::cout << std::fixed << "\n";
+  }
   if (full.second + fps_full.second + undecided_pairs)
     std::cout << "  (undecided by rounding, counted as inside: " << full.second + fps_full.second + undecided_pairs
               << ")\n";
-  std::cout << "\nMean half-widths: ellipsoid outer box vs FPS PUIs\n";
+  std::cout << "\nMean half-widths: ellipsoid outer box" << (pui_runs ? ", estimate FPS PUIs" : "")
+            << (g_pui_runs ? ", guaranteed PUIs" : "") << "\n";
   for (int i = 0; i < m; ++i) {
     std::cout << "  " << std::left << std::setw(8) << names[i] << std::right << std::scientific << std::setprecision(3)
               << std::setw(12) << box_hw[i];
     if (pui_runs) std::cout << std::setw(12) << pui_hw[i];
+    if (g_pui_runs) std::cout << std::setw(12) << g_hw[i];
     std::cout << '\n';
   }
   std::cout << std::fixed << std::setprecision(2) << "\nTiming: " << seconds << " s for " << st.runs << " runs on "
@@ -215,8 +292,17 @@ int monte_carlo(const Settings& st) {
     Json j;
     j["runs"] = st.runs;
     j["parameters"] = jp;
-    j["failure_rates"] = {{"pairs", jpairs}, {"full", full.first}, {"fps_full", fps_full.first}};
-    if (pui_runs) j["failure_rates"]["fps_pui_box"] = static_cast<double>(pui_out) / pui_runs;
+    j["failure_rates"] = {{"pairs", jpairs}, {"full", full.first}, {"estimate_fps_full", fps_full.first}};
+    if (pui_runs) j["failure_rates"]["estimate_fps_pui_box"] = static_cast<double>(pui_out) / pui_runs;
+    if (st.guaranteed) {
+      j["failure_rates"]["guaranteed_fps_full"] = static_cast<double>(g_out) / st.runs;
+      if (g_pui_runs) j["failure_rates"]["guaranteed_pui_box"] = static_cast<double>(g_pui_out) / g_pui_runs;
+      j["guaranteed"] = {{"runs_meeting_assumption", held_runs},
+                         {"outside_while_assumption_held", g_out_held},
+                         {"contradicted_runs", contradicted_runs},
+                         {"tail_bound", std::vector<double>(tail.data(), tail.data() + tail.size())},
+                         {"mean_pui_halfwidth", std::vector<double>(g_hw.data(), g_hw.data() + g_hw.size())}};
+    }
     j["seconds"] = seconds;
     j["cpu_seconds"] = cpu_seconds;
     j["settings"] = {{"seed", st.seed},          {"snr_db", st.snr_db},
@@ -225,7 +311,8 @@ int monte_carlo(const Settings& st) {
                      {"residuals", sets::to_string(st.level.residuals)},
                      {"norm", sets::to_string(st.level.norm)},
                      {"level_factor", st.level.level_factor},
-                     {"mean_ell", ell_mean},     {"pui_runs", pui_runs}};
+                     {"mean_ell", ell_mean},     {"pui_runs", pui_runs},
+                     {"noise", st.noise},        {"noise_bound_sigmas", st.noise_bound_sigmas}};
     sets::app::write_json(st.json_path, j);
   }
   return 0;

@@ -19,6 +19,10 @@ struct Settings {
   std::string selection = "output-major";
   sets::LevelSetOptions level;
   int fps_pui_runs = -1;             // PUIs by LP in the first K runs (-1: all)
+  std::string noise = "gaussian";    // or "uniform" (bounded: the guaranteed set's assumption holds)
+  double noise_bound_sigmas = 4;     // Gaussian noise: the bound the guaranteed set assumes, in sigmas
+  bool guaranteed = true;            // compute the guaranteed set in every run
+  int guaranteed_pui_runs = 0;       // its PUIs by LP in the first K runs (-1: all); costly (interval regressors)
   std::string json_path;
   // real data
   std::string data, inputs, outputs;

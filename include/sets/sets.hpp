@@ -25,6 +25,7 @@
 
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
+#include "sets/models/state_space_model.hpp"
 #include "sets/models/transfer_function.hpp"
 #include "sets/models/time_varying_model.hpp"
 
@@ -39,6 +40,8 @@
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
+#include "sets/methods/ss_uncertainty/canonical_fps.hpp"
+#include "sets/methods/ss_uncertainty/state_enclosure.hpp"
 
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 

@@ -1,5 +1,6 @@
 #include "sets/examples/farah.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sets::farah {
@@ -16,9 +17,10 @@ StateSpaceModel system() {
   return s;
 }
 
-Data simulate(const StateSpaceModel& sys, int samples, double snr_db, std::mt19937_64& rng) {
+Data simulate(const StateSpaceModel& sys, int samples, double snr_db, std::mt19937_64& rng, Noise noise) {
   std::bernoulli_distribution coin(0.5);
   std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   const int N = samples;
   const auto nu = sys.B.cols(), ny = sys.C.rows();
   Data d;
@@ -26,10 +28,17 @@ Data simulate(const StateSpaceModel& sys, int samples, double snr_db, std::mt199
   for (int t = 0; t < N; ++t)
     for (Eigen::Index m = 0; m < nu; ++m) d.u(t, m) = coin(rng) ? 1.0 : -1.0;
   d.y = sets::simulate(sys, d.u);
+  d.sigma.resize(ny);
+  d.largest_noise = Eigen::VectorXd::Zero(ny);
   for (Eigen::Index j = 0; j < ny; ++j) {
     const double var = (d.y.col(j).array() - d.y.col(j).mean()).square().mean();
     const double sigma = std::sqrt(var / std::pow(10.0, snr_db / 10.0));
-    for (int t = 0; t < N; ++t) d.y(t, j) += sigma * gauss(rng);
+    d.sigma[j] = sigma;
+    for (int t = 0; t < N; ++t) {
+      const double clean = d.y(t, j);
+      d.y(t, j) += noise == Noise::gaussian ? sigma * gauss(rng) : std::sqrt(3.0) * sigma * uniform(rng);
+      d.largest_noise[j] = std::max(d.largest_noise[j], std::abs(d.y(t, j) - clean));
+    }
   }
   return d;
 }

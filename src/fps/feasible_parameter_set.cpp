@@ -194,7 +194,7 @@ class OrthantLp {
       : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(warm) {
     const int p = fps.dimension(), N = fps.size();
     for (int j = 0; j < p; ++j) {
-      if (s.empty()) continue;
+      if (s.empty() || s[static_cast<std::size_t>(j)] == 0) continue;  // 0: a free parameter
       if (s[static_cast<std::size_t>(j)] > 0)
         lp_.set_variable_bounds(j, 0, inf);
       else
@@ -312,9 +312,18 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   return out;
 }
 
-Orthant sign_orthant(const Eigen::VectorXd& theta) {
-  Orthant s(static_cast<std::size_t>(theta.size()));
-  for (Eigen::Index j = 0; j < theta.size(); ++j) s[static_cast<std::size_t>(j)] = theta[j] < 0 ? -1 : 1;
+// The orthant of theta in the parameters whose regressors are intervals somewhere; 0 (free) for
+// the others: with point regressors the set is the same polyhedron on both sides of theta_j = 0,
+// so splitting there would only repeat LPs (2^k pieces for k such parameters).
+Orthant sign_orthant(const FeasibleParameterSet& fps, const Eigen::VectorXd& theta) {
+  Orthant s(static_cast<std::size_t>(theta.size()), 0);
+  const auto Phi = fps.regressors();
+  for (Eigen::Index j = 0; j < theta.size(); ++j)
+    for (Eigen::Index t = 0; t < Phi.rows(); ++t)
+      if (Phi(t, j).lower() != Phi(t, j).upper()) {
+        s[static_cast<std::size_t>(j)] = theta[j] < 0 ? -1 : 1;
+        break;
+      }
   return s;
 }
 
@@ -379,7 +388,7 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
     // (theta_l = 0), the set may continue into the orthant across that face.
-    std::deque<Orthant> queue{sign_orthant(fps.least_squares())};
+    std::deque<Orthant> queue{sign_orthant(fps, fps.least_squares())};
     std::set<Orthant> seen{queue.front()};
     while (!queue.empty()) {
       Orthant s = queue.front();
@@ -394,6 +403,7 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
       }
       const double tol = options.zero_tolerance * scale;
       for (int j = 0; j < p; ++j) {
+        if (s[static_cast<std::size_t>(j)] == 0) continue;  // free: no face at theta_j = 0
         const bool touches = s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol;
         if (!touches) continue;
         Orthant next = s;

@@ -47,9 +47,10 @@ IntervalVector make_box(const Eigen::Ref<const Eigen::VectorXd>& lo,
 IntervalVector multiply(const IntervalMatrix& A, const IntervalVector& x) {
   if (A.cols() != x.size()) throw InputError("multiply: dimensions do not match");
   IntervalVector r(A.rows());
+  RoundingScope upward;  // pure interval work: one rounding-mode switch per call
   for (Eigen::Index i = 0; i < A.rows(); ++i) {
-    Interval s(0.0);
-    for (Eigen::Index j = 0; j < A.cols(); ++j) s += A(i, j) * x[j];
+    UnprotectedInterval s(0.0);
+    for (Eigen::Index j = 0; j < A.cols(); ++j) s += UnprotectedInterval(A(i, j)) * UnprotectedInterval(x[j]);
     r[i] = s;
   }
   return r;
@@ -58,9 +59,10 @@ IntervalVector multiply(const IntervalMatrix& A, const IntervalVector& x) {
 IntervalVector multiply(const Eigen::MatrixXd& A, const IntervalVector& x) {
   if (A.cols() != x.size()) throw InputError("multiply: dimensions do not match");
   IntervalVector r(A.rows());
+  RoundingScope upward;  // pure interval work: one rounding-mode switch per call
   for (Eigen::Index i = 0; i < A.rows(); ++i) {
-    Interval s(0.0);
-    for (Eigen::Index j = 0; j < A.cols(); ++j) s += A(i, j) * x[j];
+    UnprotectedInterval s(0.0);
+    for (Eigen::Index j = 0; j < A.cols(); ++j) s += UnprotectedInterval(A(i, j)) * UnprotectedInterval(x[j]);
     r[i] = s;
   }
   return r;

@@ -5,47 +5,58 @@
 
 namespace sets::detail {
 
+// The loops below are pure interval work: one rounding-mode switch per call (RoundingScope), not
+// three per operation; the results are the same.
+using I = UnprotectedInterval;
+
 double frobenius_upper(const IntervalMatrix& M) {
-  Interval s(0.0);
+  RoundingScope upward;
+  I s(0.0);
   for (Eigen::Index j = 0; j < M.cols(); ++j)
     for (Eigen::Index i = 0; i < M.rows(); ++i) {
       const double m = std::max(std::abs(M(i, j).lower()), std::abs(M(i, j).upper()));
-      s += Interval(m) * Interval(m);
+      s += I(m) * I(m);
     }
-  return sqrt(s).upper();
+  return boost::numeric::sqrt(s).upper();
 }
 
 double norm_upper(const IntervalVector& v) {
-  Interval s(0.0);
+  RoundingScope upward;
+  I s(0.0);
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     const double m = std::max(std::abs(v[i].lower()), std::abs(v[i].upper()));
-    s += Interval(m) * Interval(m);
+    s += I(m) * I(m);
   }
-  return sqrt(s).upper();
+  return boost::numeric::sqrt(s).upper();
 }
 
 IntervalMatrix multiply(const IntervalMatrix& A, const IntervalMatrix& B) {
   IntervalMatrix C(A.rows(), B.cols());
+  RoundingScope upward;
   for (Eigen::Index i = 0; i < A.rows(); ++i)
     for (Eigen::Index j = 0; j < B.cols(); ++j) {
-      Interval s(0.0);
-      for (Eigen::Index k = 0; k < A.cols(); ++k) s += A(i, k) * B(k, j);
+      I s(0.0);
+      for (Eigen::Index k = 0; k < A.cols(); ++k) s += I(A(i, k)) * I(B(k, j));
       C(i, j) = s;
     }
   return C;
 }
 
 Interval dot(const IntervalVector& a, const IntervalVector& b) {
-  Interval s(0.0);
-  for (Eigen::Index i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  RoundingScope upward;
+  I s(0.0);
+  for (Eigen::Index i = 0; i < a.size(); ++i) s += I(a[i]) * I(b[i]);
   return s;
 }
 
 std::optional<double> inverse_deviation_bound(const Eigen::MatrixXd& A, const Eigen::MatrixXd& X) {
   const auto n = A.rows();
   IntervalMatrix E = multiply(detail::im(X), detail::im(A));
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j) E(i, j) = (i == j ? Interval(1.0) : Interval(0.0)) - E(i, j);
+  {
+    RoundingScope upward;
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j) E(i, j) = (i == j ? I(1.0) : I(0.0)) - I(E(i, j));
+  }
   const double alpha = frobenius_upper(E);
   if (!(alpha < 1)) return std::nullopt;
   const double xn = frobenius_upper(detail::im(X));

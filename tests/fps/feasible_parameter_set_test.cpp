@@ -178,6 +178,34 @@ TEST(Pui, BadInputNamesSampleAndField) {
   EXPECT_THROW(FeasibleParameterSet::from_data(d.Phi, d.y.head(5), d.delta), sets::InputError);
 }
 
+TEST(Pui, PointRegressorColumnsAreNotSplitIntoOrthants) {
+  // theta_1 has exact regressors and straddles 0; theta_0 has interval regressors. Remark 2 keeps
+  // theta_1 free (sign 0) and reaches the same box as all orthants, with fewer pieces.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int N = 60;
+  IntervalMatrix Phi(N, 2);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    const double a = U(rng), b = U(rng);
+    Phi(t, 0) = sets::interval_around(a, 0.02);
+    Phi(t, 1) = sets::Interval(b);
+    Y[t] = sets::interval_around(0.8 * a + 0.01 * b, 0.1);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  const auto r2 = sets::pui(fps);
+  const auto all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
+  ASSERT_FALSE(r2.empty);
+  EXPECT_LT(r2.box[1].lower(), 0.0);
+  EXPECT_GT(r2.box[1].upper(), 0.0);
+  for (const auto& o : r2.orthants) EXPECT_EQ(o.signs.at(1), 0);
+  EXPECT_LT(r2.orthants.size(), all.orthants.size());
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_NEAR(r2.box[j].lower(), all.box[j].lower(), 1e-9);
+    EXPECT_NEAR(r2.box[j].upper(), all.box[j].upper(), 1e-9);
+  }
+}
+
 TEST(Pui, RemarkTwoExtendsAcrossZeroBounds) {
   // theta_2 = 0 exactly: the set straddles the face theta_2 = 0 and Remark 2 must visit both sides.
   std::mt19937_64 rng(11);

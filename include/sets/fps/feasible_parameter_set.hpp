@@ -21,7 +21,8 @@
 
 namespace sets {
 
-/// Signs of theta in one orthant: +1 means theta_j >= 0, -1 means theta_j <= 0.
+/// Signs of theta in one orthant: +1 means theta_j >= 0, -1 means theta_j <= 0, 0 means theta_j
+/// free (pui() uses 0 for a parameter whose regressors are all points: its sign does not matter).
 using Orthant = std::vector<int>;
 
 class FeasibleParameterSet {

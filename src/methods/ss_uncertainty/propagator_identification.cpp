@@ -78,21 +78,6 @@ std::string cat(const T&... parts) {
 
 }  // namespace
 
-Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::MatrixXd& u, const Eigen::VectorXd& x0) {
-  const auto n = m.A.rows();
-  if (m.A.cols() != n || m.B.rows() != n || m.B.cols() != u.cols() || m.C.cols() != n || m.D.rows() != m.C.rows() ||
-      m.D.cols() != u.cols() || (x0.size() != 0 && x0.size() != n))
-    throw InputError("simulate: dimensions of A, B, C, D, u and x0 do not match");
-  Eigen::VectorXd x = x0.size() ? x0 : Eigen::VectorXd::Zero(n);
-  Eigen::MatrixXd y(u.rows(), m.C.rows());
-  for (int t = 0; t < u.rows(); ++t) {
-    const Eigen::VectorXd ut = u.row(t).transpose();
-    y.row(t) = (m.C * x + m.D * ut).transpose();
-    x = m.A * x + m.B * ut;
-  }
-  return y;
-}
-
 std::string to_string(const ObservabilityRow& row) {
   return cat("y", row.output + 1, "[t+", row.lag, "]");
 }
@@ -298,6 +283,18 @@ CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eig
   return r;
 }
 
+Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool with_current) {
+  const int N = static_cast<int>(u.rows()), nu = static_cast<int>(u.cols()), p = past;
+  if (p < 1 || N <= p) throw InputError("past_input_regressor: need 1 <= p < N");
+  Eigen::MatrixXd Z(N - p, nu * p + (with_current ? nu : 0));
+  for (int k = 0; k < N - p; ++k) {
+    const int t = p + k;
+    for (int b = 0; b < p; ++b) Z.block(k, b * nu, 1, nu) = u.row(t - p + b);
+    if (with_current) Z.block(k, p * nu, 1, nu) = u.row(t);
+  }
+  return Z;
+}
+
 PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
                                      const PropagatorOptions& o) {
   const int N = static_cast<int>(u.rows());
@@ -325,13 +322,8 @@ PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::Matr
                        "): a constant input does not excite the system, CK cannot be estimated");
 
   // Step 1: y(t) = CK u_p(t) + D u(t), t = p .. N-1.
-  Eigen::MatrixXd Z(M, cols), Y(M, ny);
-  for (int k = 0; k < M; ++k) {
-    const int t = p + k;
-    for (int b = 0; b < p; ++b) Z.block(k, b * nu, 1, nu) = u.row(t - p + b);
-    if (o.estimate_d) Z.block(k, p * nu, 1, nu) = u.row(t);
-    Y.row(k) = y.row(t);
-  }
+  const Eigen::MatrixXd Z = past_input_regressor(u, p, o.estimate_d);
+  const Eigen::MatrixXd Y = y.bottomRows(M);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Z);
   qr.setThreshold(1e-10);
   if (qr.rank() < cols)
@@ -346,7 +338,9 @@ PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::Matr
   r.gamma_k = Eigen::MatrixXd::Zero(ny * p, nu * p);
   for (int i = 0; i < p; ++i)
     for (int k = i; k < p; ++k) r.gamma_k.block(i * ny, k * nu, ny, nu) = r.markov.block(0, (k - i) * nu, ny, nu);
-  r.gamma_k_singular_values = Eigen::JacobiSVD<Eigen::MatrixXd>(r.gamma_k).singularValues();
+  // Singular values only: BDCSVD (bidiagonalisation, then divide and conquer) is several times faster
+  // than Jacobi rotations on the (p ny) x (p nu) matrix.
+  r.gamma_k_singular_values = Eigen::BDCSVD<Eigen::MatrixXd>(r.gamma_k).singularValues();
   const auto& s = r.gamma_k_singular_values;
   const double abs_tol = o.rank_tolerance * s(0);
   const int rank = s(0) > 0 ? static_cast<int>((s.array() > abs_tol).count()) : 0;

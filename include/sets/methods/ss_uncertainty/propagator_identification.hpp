@@ -17,16 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "sets/models/state_space_model.hpp"
+
 namespace sets {
-
-struct StateSpaceModel {
-  Eigen::MatrixXd A, B, C, D;
-};
-
-/// Simulates x(t+1) = A x(t) + B u(t), y(t) = C x(t) + D u(t) from x(0) = x0 (zero if empty);
-/// u is N x nu, the result N x ny (time along rows).
-Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::MatrixXd& u,
-                         const Eigen::VectorXd& x0 = Eigen::VectorXd());
 
 /// One row of the extended observability matrix Gamma_p: output `output` at lag `lag`
 /// (the row C(output,:) A^lag).
@@ -109,6 +102,10 @@ struct CanonicalRegression {
 CanonicalRegression canonical_regression(const CanonicalStructure& structure,
                                          const Eigen::MatrixXd& states, int first,
                                          const Eigen::MatrixXd& u, const Eigen::MatrixXd& y);
+
+/// The regressor of step 1: row k = [u_p(t)^T, u(t)^T] for t = p + k, k = 0..N-p-1, with
+/// u_p(t) = [u(t-p); ...; u(t-1)] and the u(t) block only `with_current` (D estimated).
+Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool with_current);
 
 struct PropagatorOptions {
   int order = 0;                      // n_x

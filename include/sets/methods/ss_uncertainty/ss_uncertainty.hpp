@@ -7,6 +7,9 @@
 //   2. the paper's level-set ellipsoid (Section IV)            -> estimate_level_set
 //   3. the feasible parameter set of the same regression with |eps| <= l, l read from the
 //      least-squares residuals, and its PUIs                   -> estimate_fps, estimate_fps_pui
+//   4. with assumptions (a noise bound, and a tail bound or a state-error bound): enclosures of
+//      the true states and the feasible parameter set with them as interval regressors, which
+//      contains the true parameters whenever the assumptions hold -> guaranteed_fps, guaranteed_pui
 //
 // Steps 2 and 3 are estimates, not guarantees: l is a statistic of the residuals, not a noise
 // bound, and the error of the estimated state is ignored (the paper's footnote 2).
@@ -18,6 +21,7 @@
 #include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
+#include "sets/methods/ss_uncertainty/state_enclosure.hpp"
 
 namespace sets {
 
@@ -25,6 +29,9 @@ struct SsUncertaintyOptions {
   PropagatorOptions identification;
   LevelSetOptions level;
   bool estimate_fps_pui = true;  // PUIs of estimate_fps by LP (the costly part)
+  /// Compute the guaranteed set under these assumptions (state_enclosure.hpp); none: skip it.
+  std::optional<GuaranteedSetAssumptions> guaranteed;
+  bool guaranteed_pui = true;     // its PUIs by LP
 };
 
 struct SsUncertaintyResult {
@@ -32,6 +39,10 @@ struct SsUncertaintyResult {
   LevelSetDomain estimate_level_set;      // the paper's ellipsoid (not guaranteed)
   CanonicalFps estimate_fps;              // |y_M - Psi theta| <= l per equation (not guaranteed)
   std::optional<PuiResult> estimate_fps_pui;
+  // With options.guaranteed:
+  std::optional<StateEnclosure> state_enclosure;  // its contradictions: the data falsify the assumptions
+  std::optional<CanonicalFps> guaranteed_fps;
+  std::optional<PuiResult> guaranteed_pui;        // empty: the data falsify the assumptions
 };
 
 /// Identifies a canonical model from u (N x nu) and y (N x ny), time along rows, and computes
