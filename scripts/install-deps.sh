@@ -14,4 +14,6 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libgtest-dev libgmock-dev librapidcheck-dev libbenchmark-dev \
   libcli11-dev nlohmann-json3-dev libmuparser-dev libmatio-dev zlib1g-dev \
   gnuplot-nox \
-  clang-14 libfuzzer-14-dev libclang-rt-14-dev llvm-14 >/dev/null
+  clang-14 libfuzzer-14-dev libclang-rt-14-dev llvm-14 \
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-matplotlib python3-pytest \
+  python3-dask python3-distributed chromium >/dev/null

@@ -51,7 +51,7 @@ rm -r "$dir/k/mine"
 
 # A report is written as a whole, and replaces an older one as a whole.
 check "report" 0 "Augmented model written to" -- "$app" --example --quiet --report "$dir/k/report" --json "$dir/k/d.json"
-check_listing "report folder" "$dir/k/report" augmented_model.json report.txt signals_estimation.png \
+check_listing "report folder" "$dir/k/report" augmented_model.json index.html report.txt signals_estimation.png \
   signals_validation.png signature.png
 check_listing "beside the report: only the JSON" "$dir/k" d.json report
 

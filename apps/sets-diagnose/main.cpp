@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   app.add_option("--validation", val_path, "second recording, used to judge the hypotheses and the fit");
   cli.add_output_file("--json", json_path, "write the diagnosis as JSON here");
   cli.add_output_folder("--report", report_dir,
-                        "write plots (PNG via gnuplot), report.txt and augmented_model.json here (the folder is "
+                        "write index.html, plots (PNG via gnuplot), report.txt and augmented_model.json here (the folder is "
                         "replaced as a whole)",
                         kReportFiles);
   app.add_flag("--example", example, "diagnose a built-in simulated example (no files needed)");

@@ -9,6 +9,7 @@
 #include "common/gnuplot.hpp"
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
+#include "sets/diagnosis/report_html.hpp"
 #include "sets/examples/diagnosis_suite.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 
@@ -31,6 +32,22 @@ void write_series(const std::string& path, const Eigen::VectorXd& t, const std::
   if (!o) throw InputError(path + ": cannot write");
 }
 
+// index.html beside the figures (sets/diagnosis/report_html.hpp).
+void write_html_page(const Diagnosis& d, const fs::path& dir, const std::vector<std::string>& pngs) {
+  std::vector<ReportFigure> figures;
+  for (const auto& p : pngs) {
+    const std::string record = p == "signals_validation.png" ? "validation" : "estimation";
+    figures.push_back({p, p == "signature.png"
+                              ? "Signature: the residual of " + d.signature_output + " (measured - calibrated nominal) against " +
+                                    d.signature_variable + ", with the effects found (augmented - nominal) over it."
+                              : "The " + record + " record: measured, calibrated nominal and augmented outputs; under each, "
+                                "the residuals" + (record == "estimation" ? "; shaded: the mismatch windows." : ".")});
+  }
+  std::ofstream o(dir / "index.html");
+  o << diagnosis_html(d, figures, "augmented_model.json");
+  if (!o) throw InputError((dir / "index.html").string() + ": cannot write");
+}
+
 }  // namespace
 
 void write_report(const Diagnosis& d, const std::string& dir, const std::string& augmented_text) {
@@ -38,48 +55,86 @@ void write_report(const Diagnosis& d, const std::string& dir, const std::string&
   const fs::path tmp = out.staging();
   std::vector<std::string> pngs;
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1200,800 noenhanced\nset grid\n";
+  gp << "set grid\nset key opaque\n";
   const auto ny = static_cast<Eigen::Index>(d.outputs.size());
+  // Each output: its signals, and under them its residuals (measured - nominal, measured -
+  // augmented); the mismatch windows shaded on both; axes with the model file's units.
+  auto label = [&](const std::string& name) {
+    const std::string u = d.nominal.unit(name);
+    return u.empty() ? name : name + " [" + u + "]";
+  };
   auto signals = [&](const std::string& tag, const Eigen::VectorXd& t, const Eigen::MatrixXd& meas,
                      const Eigen::MatrixXd& nom, const Eigen::MatrixXd& aug, bool windows) {
     write_series((tmp / (tag + ".dat")).string(), t, {&meas, &nom, &aug});
+    gp << "set terminal pngcairo size 1200," << std::max<Eigen::Index>(800, 460 * ny) << " noenhanced\n";
     gp << "set output " << gnuplot_quote((tmp / ("signals_" + tag + ".png")).string()) << "\n";
-    gp << "set multiplot layout " << ny << ",1 title "
-       << gnuplot_quote("measured, nominal (calibrated) and augmented: " + tag + " record") << "\n";
+    gp << "set multiplot title "
+       << gnuplot_quote("measured, nominal (calibrated) and augmented: " + tag + " record" +
+                        (windows ? " (shaded: mismatch windows)" : "")) << "\n";
+    gp << "set lmargin at screen 0.09\nset rmargin at screen 0.97\n";
+    const double block = 0.92 / static_cast<double>(ny);
     for (Eigen::Index j = 0; j < ny; ++j) {
-      gp << "unset object\n";
-      if (windows) {
-        int id = 1;
-        for (const auto& w : d.windows)
-          if (w.output == d.outputs[static_cast<std::size_t>(j)])
-            gp << "set object " << id++ << " rect from " << w.start << ", graph 0 to " << w.end
-               << ", graph 1 fc rgb '#ffd0d0' fs solid 0.5 noborder behind\n";
+      const std::string& out = d.outputs[static_cast<std::size_t>(j)];
+      const double top = 0.94 - static_cast<double>(j) * block, split = top - 0.6 * block, bottom = top - 0.9 * block;
+      const std::string data = gnuplot_quote((tmp / (tag + ".dat")).string());
+      const auto c = [&](int block_index) { return std::to_string(2 + block_index * ny + j); };
+      for (int panel = 0; panel < 2; ++panel) {
+        gp << "unset object\n";
+        if (windows) {
+          int id = 1;
+          for (const auto& w : d.windows)
+            if (w.output == out)
+              gp << "set object " << id++ << " rect from " << w.start << ", graph 0 to " << w.end
+                 << ", graph 1 fc rgb '#ffd0d0' fs solid 0.5 noborder behind\n";
+        }
+        gp << "set tmargin at screen " << (panel == 0 ? top : split - 0.03 * block) << "\nset bmargin at screen "
+           << (panel == 0 ? split : bottom) << "\n";
+        if (panel == 0) {
+          gp << "set format x ''\nunset xlabel\nset ylabel " << gnuplot_quote(label(out)) << "\n";
+          gp << "plot " << data << " using 1:" << c(0) << " with lines lw 2 lc rgb 'black' title 'measured', '' using 1:"
+             << c(1) << " with lines lc rgb 'red' title 'nominal', '' using 1:" << c(2)
+             << " with lines lc rgb 'blue' title 'augmented'\n";
+        } else {
+          const std::string u = d.nominal.unit(out);
+          gp << "set format x '%g'\nset xlabel 't [s]'\nset ylabel " << gnuplot_quote(u.empty() ? "residual" : "residual [" + u + "]")
+             << "\n";
+          gp << "plot " << data << " using 1:(column(" << c(0) << ")-column(" << c(1)
+             << ")) with lines lc rgb 'red' title 'measured - nominal', '' using 1:(column(" << c(0) << ")-column(" << c(2)
+             << ")) with lines lc rgb 'blue' title 'measured - augmented'\n";
+        }
       }
-      gp << "set xlabel 't [s]'\nset ylabel " << gnuplot_quote(d.outputs[static_cast<std::size_t>(j)]) << "\n";
-      const auto c = [&](int block) { return 2 + block * ny + j; };
-      gp << "plot " << gnuplot_quote((tmp / (tag + ".dat")).string()) << " using 1:" << c(0)
-         << " with lines lw 2 lc rgb 'black' title 'measured', '' using 1:" << c(1)
-         << " with lines lc rgb 'red' title 'nominal', '' using 1:" << c(2)
-         << " with lines lc rgb 'blue' title 'augmented'\n";
     }
-    gp << "unset multiplot\nunset object\n";
+    gp << "unset multiplot\nunset object\nset format x '%g'\nset lmargin\nset rmargin\nset tmargin\nset bmargin\n";
     pngs.push_back("signals_" + tag + ".png");
   };
   signals("estimation", d.time_estimation, d.measured_estimation, d.nominal_estimation, d.augmented_estimation, true);
   if (d.has_validation)
     signals("validation", d.time_validation, d.measured_validation, d.nominal_validation, d.augmented_validation, false);
   {
+    // The effects found as they show in this output: augmented - nominal at the same samples.
+    Eigen::Index main = 0;
+    while (main + 1 < ny && d.outputs[static_cast<std::size_t>(main)] != d.signature_output) ++main;
+    const bool overlay = !d.effects.empty() && d.augmented_estimation.rows() == d.signature_x.size() &&
+                         d.nominal_estimation.rows() == d.signature_x.size();
     std::ofstream o(tmp / "signature.dat");
     const Eigen::Index N = d.signature_x.size(), stride = std::max<Eigen::Index>(1, N / 8000);
-    for (Eigen::Index k = 0; k < N; k += stride) o << d.signature_x[k] << " " << d.signature_residual[k] << "\n";
+    for (Eigen::Index k = 0; k < N; k += stride)
+      o << d.signature_x[k] << " " << d.signature_residual[k] << " "
+        << (overlay ? d.augmented_estimation(k, main) - d.nominal_estimation(k, main) : 0.0) << "\n";
+    std::string effects;
+    for (const auto& e : d.effects) effects += (effects.empty() ? "" : ", ") + e.name;
+    gp << "set terminal pngcairo size 1200,800 noenhanced\n";
     gp << "set output " << gnuplot_quote((tmp / "signature.png").string()) << "\n";
     gp << "set title "
        << gnuplot_quote("signature: residual of " + d.signature_output + " (measured - calibrated nominal) against " +
                         d.signature_variable)
        << "\n";
-    gp << "set xlabel " << gnuplot_quote(d.signature_variable) << "\nset ylabel "
-       << gnuplot_quote("residual of " + d.signature_output) << "\n";
-    gp << "plot " << gnuplot_quote((tmp / "signature.dat").string()) << " using 1:2 with points pt 7 ps 0.3 notitle\n";
+    gp << "set xlabel " << gnuplot_quote(label(d.signature_variable)) << "\nset ylabel "
+       << gnuplot_quote("residual of " + label(d.signature_output)) << "\n";
+    gp << "plot " << gnuplot_quote((tmp / "signature.dat").string())
+       << " using 1:2 with points pt 7 ps 0.3 lc rgb '#606060' title 'residual'";
+    if (overlay) gp << ", '' using 1:3 with points pt 7 ps 0.3 lc rgb 'blue' title " << gnuplot_quote("fitted: augmented - nominal (" + effects + ")");
+    gp << "\nunset title\n";
     pngs.push_back("signature.png");
   }
   {
@@ -96,6 +151,7 @@ void write_report(const Diagnosis& d, const std::string& dir, const std::string&
     a << augmented_text;
     if (!o || !a) throw InputError(dir + ": cannot write the report");
   }
+  write_html_page(d, tmp, pngs);
   // Only the report's own files move into place.
   for (const auto& e : fs::directory_iterator(tmp)) {
     const std::string n = e.path().filename().string();

@@ -6,12 +6,12 @@
 
 #include "sets/diagnosis/diagnosis.hpp"
 
-/// Writes plots (PNG via gnuplot), report.txt and augmented_model.json into `dir` as a whole:
+/// Writes index.html, plots (PNG via gnuplot), report.txt and augmented_model.json into `dir` as a whole:
 /// everything is made in a hidden folder beside it and renamed into place at the end.
 void write_report(const sets::Diagnosis& d, const std::string& dir, const std::string& augmented_text);
 
 /// The files write_report writes (a regular expression over file names).
-inline constexpr const char* kReportFiles = R"((report\.txt|augmented_model\.json|signals_[a-z]+\.png|signature\.png))";
+inline constexpr const char* kReportFiles = R"((index\.html|report\.txt|augmented_model\.json|signals_[a-z]+\.png|signature\.png))";
 
 /// Diagnoses the fixed suite (every plant, or only `plant`, whose full report then goes to stderr)
 /// or `count` random plants from `seed` (sets/examples/diagnosis_suite.hpp) and prints the scores

@@ -20,9 +20,9 @@ struct Settings {
 
 struct Runs {
   sets::HinfBoundResult first;  // the first run (or the first falsified one)
-  int fail_b = 0, fail_grid = 0, fail_data = 0, fail_regions = 0, falsified = 0;
+  int fail_b = 0, fail_grid = 0, fail_data = 0, fail_prior = 0, fail_regions = 0, falsified = 0;
   double seconds = 0;           // wall time in sets::hinf_bound, all runs
-  std::vector<double> bs, bgrids, bdatas, ubs, ubgrids, ubdatas, radii;
+  std::vector<double> bs, bgrids, bdatas, bpriors, ubs, ubgrids, ubdatas, ubpriors, radii;
 };
 
 /// Built-in: `settings.runs` data sets of G0 from one generator; otherwise `data` once. Counts

@@ -25,7 +25,8 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
     d.augmented_validation = nominal.validation_outputs;
     return;
   }
-  const ModelFile& current = search.current;
+  ModelFile refined = search.current;  // its values refined with the final substeps below
+  const ModelFile& current = refined;
   const auto& chosen_candidates = search.chosen;
   const Recording& est = c.estimation;
   const Recording* val = c.validation;
@@ -38,8 +39,9 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const std::vector<int> fr = aug.free_parameters();
   CalibrationOptions o;
   o.scale = scales_for(current, fr, search.known_scales);
-  const auto r = evaluate(aug, aug.parameter_values());
+  const auto r = refine_with_final_substeps(c, aug, aug.parameter_values(), fr, o);
   if (!r.ok) throw NumericalError("the augmented model blows up with the full substeps");
+  store_values(refined, r.parameters);
   d.augmented = current;
   d.fit_augmented_estimation = r.fit;
   d.augmented_estimation = r.outputs;

@@ -23,6 +23,15 @@ void store_values(ModelFile& m, const Eigen::VectorXd& p) {
   for (std::size_t i = 0; i < m.parameters.size(); ++i) m.parameters[i].value = p[static_cast<Eigen::Index>(i)];
 }
 
+CalibrationResult refine_with_final_substeps(const Context& c, const Simulator& exact, const Eigen::VectorXd& coarse,
+                                             const std::vector<int>& free, const CalibrationOptions& options) {
+  if (c.options.screening_substeps >= c.options.final_substeps) return evaluate(exact, coarse);
+  // From a nearby start Levenberg-Marquardt needs a few Jacobians: at most 6, each n + 1 simulations.
+  CalibrationOptions o = options;
+  o.max_evaluations = 6 * (static_cast<int>(free.size()) + 1);
+  return calibrate(exact, coarse, free, o);
+}
+
 std::vector<double> scales_for(const ModelFile& m, const std::vector<int>& free,
                                const std::vector<std::pair<std::string, double>>& known) {
   std::vector<double> s;

@@ -71,6 +71,7 @@ Eigen::MatrixXd read_rows(const json& j, const std::string& where, const std::st
       bad(where, name, "has " + std::to_string(j[i].size()) + " entries, expected " + std::to_string(width));
   }
   Eigen::MatrixXd M(static_cast<Eigen::Index>(j.size()), width);
+  if (width == 0) return M;  // rows of no entries: a row view of a matrix without storage is UB
   for (std::size_t i = 0; i < j.size(); ++i)
     M.row(static_cast<Eigen::Index>(i)) = read_vec(j[i], where, field + "[" + std::to_string(i) + "]").transpose();
   return M;

@@ -41,14 +41,16 @@ ModelFile axis(bool damping = true) {
                          (damping ? R"(, "c": 1.0)" : "") + R"(},
     "states": {"x": 0.0, "v": 0.0},
     "derivatives": {"x": "v", "v": ")" + (damping ? "(K*u - k*x - c*v)/m" : "(K*u - k*x)/m") +
-                         R"("}, "outputs": {"x": "x_meas"}})",
+                         R"("}, "outputs": {"x": "x_meas"},
+    "units": {"x": "m", "v": "m/s", "u": "N", "m": "kg", "k": "N/m"}})",
                      "synthetic axis");
 }
 
 ModelFile tank() {
   return parse_model(R"({"name": "synthetic tank with linear outflow", "time": "t", "inputs": {"u": "u"},
     "parameters": {"kin": {"value": 1.0, "fixed": true}, "A": 1.2, "a": 0.7},
-    "states": {"h": "h_meas"}, "derivatives": {"h": "(kin*u - a*h)/A"}, "outputs": {"h": "h_meas"}})",
+    "states": {"h": "h_meas"}, "derivatives": {"h": "(kin*u - a*h)/A"}, "outputs": {"h": "h_meas"},
+    "units": {"h": "m", "A": "m^2"}})",
                      "synthetic tank");
 }
 

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -46,6 +47,22 @@ bool ModelFile::has_symbol(const std::string& n) const {
   return false;
 }
 
+std::string ModelFile::unit(const std::string& name) const {
+  auto find = [&](const std::string& n) -> const std::string* {
+    for (const auto& [k, u] : units)
+      if (k == n) return &u;
+    return nullptr;
+  };
+  if (const auto* u = find(name)) return *u;
+  for (const auto& [symbol, column] : outputs) {
+    if (column == name)
+      if (const auto* u = find(symbol)) return *u;
+    if (symbol == name)
+      if (const auto* u = find(column)) return *u;
+  }
+  return name == "t" || (!time_column.empty() && name == time_column) ? "s" : "";
+}
+
 namespace {
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
@@ -73,6 +90,25 @@ double number(const ojson& v, const std::string& source, const std::string& fiel
   return v.get<double>();
 }
 
+// "units": {"name": "unit", ...}; a name is a symbol of the model or a column it reads.
+void read_units(const ojson& j, ModelFile& m) {
+  m.units = read_texts(j, "units", m.source, false);
+  for (const auto& [name, unit] : m.units) {
+    bool known = m.has_symbol(name) || name == m.time_column;
+    for (const auto* list : {&m.inputs, &m.outputs})
+      for (const auto& e : *list) known = known || e.second == name;
+    for (const auto& s : m.states) known = known || s.initial_column == name;
+    if (!known)
+      fail(m.source, "\"units." + printable(name, 100) + "\" is neither a symbol of the model nor a column it reads");
+    // Units end up in figure scripts and labels: one short line of printable text.
+    const bool printable_text = unit.size() <= 40 && std::none_of(unit.begin(), unit.end(), [](char c) {
+      return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+    if (!printable_text)
+      fail(m.source, "\"units." + printable(name, 100) + "\" must be at most 40 characters without control characters");
+  }
+}
+
 }  // namespace
 
 ModelFile parse_model(const std::string& text, const std::string& source) {
@@ -83,7 +119,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   m.source = source;
   static const char* known[] = {"name",    "time",    "sample_time", "inputs",      "parameters",
                                 "states",  "signals", "sampled",     "derivatives", "outputs",
-                                "format_version", "intersample"};
+                                "format_version", "intersample", "units"};
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
@@ -185,6 +221,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   for (const auto& e : m.sampled) add(e.first, "sampled");
   for (const auto& o : m.outputs)
     if (!m.has_symbol(o.first)) fail(source, "unknown symbol \"" + printable(o.first, 100) + "\" in \"outputs\"");
+  read_units(j, m);
   return m;
 }
 
@@ -234,6 +271,7 @@ std::string to_json_text(const ModelFile& m) {
   if (!m.sampled.empty()) j["sampled"] = texts(m.sampled);
   j["derivatives"] = texts(m.derivatives);
   j["outputs"] = texts(m.outputs);
+  if (!m.units.empty()) j["units"] = texts(m.units);
   return j.dump(2) + "\n";
 }
 

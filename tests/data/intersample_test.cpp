@@ -99,6 +99,27 @@ TEST(Intersample, HeldAndLinearInputsIntegrateExactly) {
   }
 }
 
+TEST(Intersample, BandLimitedInputIntegratesCubicsExactly) {
+  // Each mode is exact on polynomials of its degree: zoh on constants, foh on lines (above), bl on
+  // cubics, up to both ends of the record (the spline's end slopes are exact for cubics). RK4 is
+  // Simpson's rule on x' = u(t), exact for cubics, so x(t_k) is the integral itself.
+  auto cubic = [](double s) { return 0.5 - 2 * s + 0.3 * s * s - 0.01 * s * s * s; };
+  auto integral = [](double s) { return 0.5 * s - s * s + 0.1 * s * s * s - 0.0025 * s * s * s * s; };
+  std::vector<double> u(30);
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = cubic(static_cast<double>(k));
+  for (int substeps : {1, 3}) {
+    const Eigen::VectorXd bl = integrate("bl", u, substeps), foh = integrate("foh", u, substeps);
+    double foh_error = 0;
+    for (int k = 0; k < 30; ++k) {
+      EXPECT_NEAR(bl[k], 0.1 * integral(k), 1e-10 * 60) << k << " substeps " << substeps;  // Ts = 0.1
+      foh_error = std::max(foh_error, std::abs(foh[k] - 0.1 * integral(k)));
+    }
+    EXPECT_GT(foh_error, 1e-3);  // a line is not a cubic: the test sees the difference
+  }
+  // Fewer than 5 samples: too short for the spline, linear between samples.
+  EXPECT_EQ(integrate("bl", {0, 1, 4, 9}, 2), integrate("foh", {0, 1, 4, 9}, 2));
+}
+
 TEST(Intersample, BandLimitedInputFollowsTheSignalBetweenSamples) {
   // A sine sampled 8 times per period: holding it delays it by half a sample; the spline follows it.
   const double Ts = 0.1, w = 2 * M_PI / (8 * Ts);

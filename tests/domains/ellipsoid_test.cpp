@@ -63,6 +63,18 @@ Eigen::VectorXd sample(Rng& r, const Ellipsoid& E, bool boundary = false) {
   return E.center() + sqrt_shape(E) * (boundary ? r.on_sphere(n) : r.in_ball(n));
 }
 
+// A sample meant to lie in E can land outside it by rounding (c + L u in doubles: relative error
+// up to cond(L) * eps; 2e-8 outside was seen, seed 6661860393174795560), and then "no" is the
+// right answer. Containment is asserted only for points inside E by a margin, judged in long
+// double (error ~ cond * 1e-19, far below the margin).
+bool clearly_inside(const Ellipsoid& E, const Eigen::VectorXd& x) {
+  using VectorXld = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+  using MatrixXld = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  const VectorXld v = x.cast<long double>() - E.center().cast<long double>();
+  const Eigen::LDLT<MatrixXld> ldlt(E.shape().cast<long double>());
+  return v.dot(ldlt.solve(v)) <= 1 - 1e-9L;
+}
+
 double quad_form(const Ellipsoid& E, const Eigen::VectorXd& x) {
   const Eigen::VectorXd v = x - E.center();
   return v.dot(E.shape().ldlt().solve(v));
@@ -164,7 +176,7 @@ RC_GTEST_PROP(Ellipsoid, SupportBoxAndContainmentAreSound, ()) {
     if (rank == n) {
       RC_ASSERT(sets::contains(box, x));
       RC_ASSERT(d.dot(x) <= sets::support(E, d));
-      RC_ASSERT(sets::contains(E, x) != BoolInterval::no);
+      if (clearly_inside(E, x)) RC_ASSERT(sets::contains(E, x) != BoolInterval::no);
     } else {
       RC_ASSERT(d.dot(x) <= sets::support(E, d) + kSlack);
     }
@@ -191,6 +203,7 @@ RC_GTEST_PROP(Ellipsoid, StripUpdateContainsIntersection, ()) {
   for (int k = 0; k < 400; ++k) {
     const Eigen::VectorXd x = sample(r, E, k % 3 == 0);
     if (std::abs(y - a.dot(x)) > delta * (1 - 1e-9)) continue;
+    if (rank == n && !clearly_inside(E, x)) continue;
     ++inside;
     RC_ASSERT(sets::contains(vol, x) != BoolInterval::no);
     RC_ASSERT(sets::contains(tr, x) != BoolInterval::no);

@@ -179,6 +179,10 @@ TEST(SetIo, HostileJsonAndTextAreInputErrorsWithTheirPlace) {
   // Found by fuzz_set_text: a 0-dimensional ellipsoid took the largest entry of an empty matrix
   // (an Eigen assertion; a read past the end without assertions).
   EXPECT_EQ(std::get<sets::Ellipsoid>(sets::from_string("Ellipsoid(dim=0, center=[], shape=[])")).dimension(), 0);
+  // Found by fuzz_set_text (UBSan): points of no entries made row views of a 2x0 matrix, which has
+  // no storage; now the dimension check names the mismatch.
+  m = input_error_of([] { sets::from_string("VPolytope(dim=2, points=[[ ], []])", "s.txt"); });
+  EXPECT_TRUE(contains(m, "s.txt (VPolytope at line 1, column 1): field 'dim': says 2 but the data have dimension 0")) << m;
   // dim = 1e300 was cast to long: undefined behaviour.
   m = input_error_of([] { sets::from_string("Box(dim=1e300, [[0, 1]])", "s.txt"); });
   EXPECT_TRUE(contains(m, "s.txt: line 1, column 9: 'dim' must be a whole number from 0 to 100000")) << m;

@@ -40,6 +40,7 @@ struct ModelFile {
   NamedTexts sampled;                  // symbol -> expression, evaluated at samples and held
   NamedTexts derivatives;              // state -> expression of its time derivative
   NamedTexts outputs;                  // model symbol -> column it is compared with
+  NamedTexts units;                    // optional: symbol or column -> unit, e.g. "q_meas": "m"
   std::string source = "<model>";      // file name for messages
 
   const ModelParameter* parameter(const std::string& n) const;
@@ -47,6 +48,9 @@ struct ModelFile {
   const std::string* derivative(const std::string& state) const;
   std::string* derivative(const std::string& state);
   bool has_symbol(const std::string& n) const;  // any defined name (t, Ts included)
+  /// Unit of a symbol or of a column the model reads ("" when the file gives none; "s" for the
+  /// time). An output column without its own entry takes its model symbol's unit and vice versa.
+  std::string unit(const std::string& name) const;
 };
 
 /// Parses format version 1. Malformed JSON -> InputError with line and column; wrong or missing

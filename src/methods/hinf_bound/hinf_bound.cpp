@@ -1,6 +1,7 @@
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
 
 #include <Eigen/Dense>
+#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 
 #include <algorithm>
@@ -302,23 +303,37 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
       s += Rv[tau] * (a.head(R - tau).dot(b.tail(R - tau)) + b.head(R - tau).dot(a.tail(R - tau)));
     return s;
   };
-  const double level = opt.simultaneous ? 1 - (1 - opt.alpha) / nw : opt.alpha;
+  if (!(opt.coefficient_share > 0)) throw InputError("coefficient_share must be > 0");
+  const double share = opt.coefficient_share;
+  // Failure budget: regions (1 - alpha) / (1 + share), coefficient set the rest (simultaneous).
+  const double level = opt.simultaneous ? 1 - (1 - opt.alpha) / ((1 + share) * nw) : opt.alpha;
   S.level = level;
-  {  // Coefficient box for b_data: theta_hat_k - theta0_k = c_k^T (tail + ic + v), c_k = Z S^-T e_k,
-     // bounded like a frequency row; Bonferroni over k at total failure share * (1 - alpha).
-    if (!(opt.coefficient_share > 0)) throw InputError("coefficient_share must be > 0");
-    const double fail = opt.coefficient_share * (1 - opt.alpha);
+  {  // Coefficient set for b_data: theta_hat_k - theta0_k = c_k^T (tail + ic + v), c_k = Z S^-T e_k.
+     // Box: each c_k bounded like a frequency row, Bonferroni over k. Ellipsoid (used by b_data):
+     // the noise part c^T v is asymptotically N(0, P), P_kl = c_k^T Sigma_v c_l, inside
+     // {e^T P^-1 e <= chi2_n} at the same failure probability; the rest is worst case per k.
+    const double fail = opt.simultaneous ? share * (1 - opt.alpha) / (1 + share) : share * (1 - opt.alpha);
     S.coefficient_level = std::max(0.0, 1 - fail);
     const boost::math::normal normal01;
     const double zt = boost::math::quantile(normal01, 1 - fail / (2 * n));
     const Eigen::MatrixXd Ct = Z * Smat.transpose().colPivHouseholderQr().solve(Eigen::MatrixXd::Identity(n, n));
     const Eigen::MatrixXd XtCt = Xt.transpose() * Ct;
+    // Sigma_v Ct by the windowed covariance (R L per column), then P = Ct^T Sigma_v Ct.
+    Eigen::MatrixXd SCt = Rv[0] * Ct;
+    for (int tau = 1; tau <= L; ++tau) {
+      SCt.bottomRows(R - tau) += Rv[tau] * Ct.topRows(R - tau);
+      SCt.topRows(R - tau) += Rv[tau] * Ct.bottomRows(R - tau);
+    }
+    S.theta_covariance = Ct.transpose() * SCt;
+    S.theta_covariance = 0.5 * (S.theta_covariance + S.theta_covariance.transpose()).eval();
+    S.theta_scale = std::sqrt(boost::math::quantile(boost::math::chi_squared(n), 1 - fail));
     S.theta_ref = S.theta;
     S.theta_radius.resize(n);
+    S.theta_offset.resize(n);
     for (int k = 0; k < n; ++k) {
       const auto c = Ct.col(k);
-      S.theta_radius[k] = zt * std::sqrt(std::max(0.0, quad(c, c))) + tailcoef.dot(XtCt.col(k).cwiseAbs()) +
-                          rem * c.norm() * H0 * unorm + c.cwiseAbs().dot(ic);
+      S.theta_offset[k] = tailcoef.dot(XtCt.col(k).cwiseAbs()) + rem * c.norm() * H0 * unorm + c.cwiseAbs().dot(ic);
+      S.theta_radius[k] = zt * std::sqrt(std::max(0.0, S.theta_covariance(k, k))) + S.theta_offset[k];
     }
   }
   const boost::math::normal normal;
@@ -592,13 +607,22 @@ double data_bound(const UncertaintySet& S, const TransferFunction& nominal, cons
   // Global slope kappa (reported): sum_k radius_k sup|F_k'| + sup|T'|.
   kappa = S.tail_beta;
   for (int k = 0; k < n; ++k) kappa += S.theta_radius[k] * (D0 + double(k / m) * H0 * L0);
-  // Weights of |F_k(w) - F_k(w_j)| in g and in the Lipschitz constant of Delta.
+  // Weights of |F_k(w) - F_k(w_j)| in g and in the Lipschitz constant of Delta. With the
+  // ellipsoid (stochastic), the first n weights are the worst-case offsets and the noise part is
+  // bounded in the direction itself: sup_{e^T P^-1 e <= s^2} |a^T e| = s sqrt(a^H P a).
+  const bool ellipsoid = S.theta_covariance.rows() == n && S.theta_offset.size() == n && n > 0;
+  const Eigen::MatrixXd& P = S.theta_covariance;
+  const Eigen::MatrixXd Pabs = ellipsoid ? Eigen::MatrixXd(P.cwiseAbs()) : Eigen::MatrixXd();
   Eigen::VectorXd wg(n + K), wd(n + K);
-  wg << S.theta_radius, S.tail_coefficients;
+  if (ellipsoid)
+    wg << S.theta_offset, S.tail_coefficients;
+  else
+    wg << S.theta_radius, S.tail_coefficients;
   wd << S.theta_ref.cwiseAbs(), Eigen::VectorXd::Zero(K);
   const Eigen::VectorXcd th = S.theta_ref.cast<std::complex<double>>();
   const auto& w = S.frequencies;
   const int nw = static_cast<int>(w.size()), sub = 64;
+  const double hder = weighted_l1(h);  // >= sup|h'|
   double b = 0;
   for (int j = 0; j < nw; ++j) {
     const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
@@ -621,16 +645,25 @@ double data_bound(const UncertaintySet& S, const TransferFunction& nominal, cons
       const LocalTf nom = local_tf(nominal.b, nominal.a, nom_poles, plo, phi);
       const Eigen::VectorXcd Fi = basis.frequency_responses(wi, n + K);
       double g = 2 * S.tail_remainder, lipg = 0, lipd = std::min(Gder, nom.der);
+      Eigen::VectorXd dks(n);
       for (int k = 0; k < n + K; ++k) {
         const double dk = std::min(D0 + double(k / m) * H0 * L0, Dc + double(k / m) * Hc * Lc);
+        if (k < n) dks[k] = dk;
         g += wg[k] * std::abs(Fi[k] - Fj[k]);
         lipg += wg[k] * dk;
         lipd += wd[k] * dk;
       }
+      if (ellipsoid) {  // |a^T e| <= s sqrt(a^H P a); slope: |F'^T e| <= s sqrt(d^T |P| d), |F_k'| <= d_k
+        const Eigen::VectorXd are = (Fi.head(n) - Fj.head(n)).real(), aim = (Fi.head(n) - Fj.head(n)).imag();
+        g += S.theta_scale * std::sqrt(std::max(0.0, are.dot(P * are) + aim.dot(P * aim)));
+        lipg += S.theta_scale * std::sqrt(std::max(0.0, dks.dot(Pabs * dks)));
+      }
       const std::complex<double> Gi = Fi.head(n).transpose() * th;
       const std::complex<double> delta = (Gi - Gr) - (nominal(wi) - Gh);
       const double dist = S.regions[j].max_distance(Gh - delta) + eta * lipd + g + eta * lipg;
-      const double Wi = 1 / std::abs(poly_at(h, wi)) + eta * Wder;
+      // |W| on the piece: 1 / (|h(w_i)| - eta sup|h'|) where positive (local), else the global slope.
+      const double hi_abs = std::abs(poly_at(h, wi)), hlo = hi_abs - eta * hder;
+      const double Wi = std::min(1 / hi_abs + eta * Wder, hlo > 0 ? 1 / hlo : inf);
       b = std::max(b, Wi * dist);
     }
   }
@@ -652,7 +685,7 @@ BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal
   const double Wmax = 1 / hmin, Wder = weighted_l1(h) / (hmin * hmin);
   const double Gder = weighted_l1(nominal.b) / amin + nominal.b.cwiseAbs().sum() * weighted_l1(nominal.a) / (amin * amin);
   const double s = S.beta1 + Gder;  // sup |d/dw (G - Ghat)|
-  B.b = 0;
+  B.b_prior = 0;
   B.b_grid = 0;
   B.b_data = data_bound(S, nominal, h, Wder, Gder, B.kappa);
   for (int j = 0; j < nw; ++j) {
@@ -662,9 +695,10 @@ BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal
     B.delta_u[j] = delta / std::abs(poly_at(h, w[j]));
     // |d/dw W(G - Ghat)| <= |W'| |G - Ghat| + |W| |G' - Ghat'| in the cell of w_j.
     B.beta[j] = Wder * (delta + B.lambda[j] * s) + Wmax * s;
-    B.b = std::max(B.b, B.delta_u[j] + B.lambda[j] * B.beta[j]);
+    B.b_prior = std::max(B.b_prior, B.delta_u[j] + B.lambda[j] * B.beta[j]);
     B.b_grid = std::max(B.b_grid, B.delta_u[j]);
   }
+  B.b = std::min(B.b_prior, B.b_data);
   return B;
 }
 

@@ -52,8 +52,11 @@ struct UncertaintyOptions {
   int max_lag = -1;          // noise covariance lags (<0: min(100, rows/10))
   int first_sample = -1;     // first regression row (<0: where the initial-condition bound is small)
   int tail_terms = -1;       // basis functions of the tail evaluated exactly (<0: automatic)
-  // Stochastic: failure probability of the coefficient box used by the data-based bound b_data,
-  // as a share of 1 - alpha (b_data then holds with probability >= 1 - (1 + share)(1 - alpha)).
+  // Stochastic: the failure probability 1 - alpha of the full-band bound b is split between the
+  // regions, (1 - alpha) / (1 + share), and the coefficient set of theta0 that b_data uses,
+  // share (1 - alpha) / (1 + share), so that b holds with probability >= alpha (union bound).
+  // With simultaneous = false (the paper's per-frequency alpha) the regions keep alpha per
+  // frequency and the coefficient set gets share (1 - alpha).
   double coefficient_share = 0.1;
 };
 
@@ -91,8 +94,15 @@ struct UncertaintySet {
   // For the data-based interpolation (b_data): |theta0_k - theta_ref_k| <= theta_radius_k
   // (bounded noise: the certified PUI box; stochastic: at level coefficient_level, Bonferroni over
   // k) and tail_beta >= sup|dT/dw| for the tail T = sum_{k>=n} g0(k) F_k (prior only).
+  // Stochastic, tighter and used by b_data instead of the box: theta_ref - theta0 = e + d with the
+  // noise part e in the ellipsoid {e : e^T P^-1 e <= theta_scale^2} (P = theta_covariance,
+  // theta_scale^2 the chi^2_n quantile at coefficient_level) and |d_k| <= theta_offset_k (the
+  // tail-through-estimate and initial-condition parts, worst case).
   OrthonormalBasis basis = OrthonormalBasis::fir();
   Eigen::VectorXd theta_ref, theta_radius;
+  Eigen::MatrixXd theta_covariance;
+  Eigen::VectorXd theta_offset;
+  double theta_scale = 0;
   double tail_beta = 0;
   Eigen::VectorXd tail_coefficients;  // M rho^k, k = n .. n+K-1 (tail terms evaluated exactly)
   double tail_remainder = 0;          // >= sup|sum_{k>=n+K} g0(k) F_k|
@@ -158,11 +168,14 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
                      const WeightOptions& options = {});
 
 struct BoundResult {
-  double b = 0;           // max_j [delta_u + lambda_j beta_j]: bounds ||W (G - Ghat)||_inf on [0, pi]
+  // The full-band bound: ||W (G0 - Ghat)||_inf <= b on [0, pi], min(b_prior, b_data) (both hold
+  // on the event that b_data holds: guaranteed for bounded noise, probability >= alpha otherwise).
+  double b = 0;
+  double b_prior = 0;     // max_j [delta_u + lambda_j beta_j]: the paper's bound, slope from the prior (12)
   double b_grid = 0;      // max_j delta_u(w_j): the bound on the grid only
-  // Data-based bound on [0, pi]: the between-grid term from the coefficient box of the set
-  // (theta_radius) and the tail prior only, certified on a sub-grid of every cell
-  // (docs/methods/hinf-bound.md, section 6). Infinite if the set carries no box.
+  // Data-based bound on [0, pi]: the between-grid term from the coefficient set of theta0
+  // (ellipsoid + offsets, or the box) and the tail prior only, certified on a sub-grid of every
+  // cell (docs/methods/hinf-bound.md, section 6). Infinite if the set carries no coefficient set.
   double b_data = 0;
   double kappa = 0;       // sum_k theta_radius_k sup|F_k'| + tail_beta: slope of the unknown part
   Eigen::VectorXd delta_u, lambda, beta;

@@ -1,0 +1,48 @@
+# Decides SETS_PYTHON and finds the interpreter, its headers and pybind11 (included from the
+# top-level CMakeLists.txt).
+if(DEFINED SETS_PYTHON)
+  set(_sets_python_required ${SETS_PYTHON})
+else()
+  set(_sets_python_required OFF)
+endif()
+
+if(NOT DEFINED Python3_EXECUTABLE)
+  find_program(_sets_path_python python3)
+  foreach(candidate ${_sets_path_python} /usr/bin/python3)
+    if(candidate AND EXISTS ${candidate})
+      execute_process(COMMAND ${candidate} -c "import numpy" RESULT_VARIABLE _sets_numpy_missing
+                      OUTPUT_QUIET ERROR_QUIET)
+      if(_sets_numpy_missing EQUAL 0)
+        set(Python3_EXECUTABLE ${candidate} CACHE FILEPATH "Python interpreter of the sets package")
+        break()
+      endif()
+    endif()
+  endforeach()
+endif()
+
+set(_sets_python_found OFF)
+if(DEFINED SETS_PYTHON AND NOT SETS_PYTHON)
+  # explicitly off
+else()
+  find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
+  if(Python3_FOUND)
+    find_package(pybind11 2.6 CONFIG QUIET)
+    execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy" RESULT_VARIABLE _sets_numpy_missing
+                    OUTPUT_QUIET ERROR_QUIET)
+    if(pybind11_FOUND AND _sets_numpy_missing EQUAL 0)
+      set(_sets_python_found ON)
+    endif()
+  endif()
+  if(NOT _sets_python_found)
+    set(_sets_python_why "needs pybind11 (pybind11-dev), the Python headers (python3-dev) and numpy (python3-numpy)")
+    if(_sets_python_required)
+      message(FATAL_ERROR "SETS_PYTHON=ON: the Python package ${_sets_python_why}")
+    endif()
+    message(STATUS "sets: Python package not built: it ${_sets_python_why}")
+  endif()
+endif()
+# Not cached when auto-detected, so installing pybind11 later turns the package on.
+set(SETS_PYTHON_ENABLED ${_sets_python_found})
+if(SETS_PYTHON_ENABLED)
+  message(STATUS "sets: Python package for ${Python3_EXECUTABLE} (${Python3_VERSION})")
+endif()
