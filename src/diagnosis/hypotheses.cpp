@@ -4,14 +4,17 @@
 // explanation wins; added greedily until the model is within the noise or nothing passes.
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
 #include <thread>
 
 #include "diagnosis/stages.hpp"
+#include "sets/core/error.hpp"
 #include "sets/diagnosis/screening.hpp"
 #include "sets/numeric/glpk_environment.hpp"
 
@@ -21,6 +24,7 @@ namespace {
 
 using Scales = std::vector<std::pair<std::string, double>>;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double inf = std::numeric_limits<double>::infinity();
 
 struct Trial {
   Candidate cand;
@@ -33,6 +37,7 @@ struct Trial {
   double screening_gain = 0;
   std::vector<RuleCheck> rules;
   bool accepted = false;
+  std::string not_beyond;  // passed against the current model, not against this special case of it
 };
 
 double validation_cost(const Context& c, const ModelFile& m) {
@@ -156,8 +161,93 @@ std::vector<std::string> excluded_by(const std::vector<std::string>& chosen) {
   return out;
 }
 
+std::vector<Candidate> parts_of(const Candidate& c) { return c.parts.empty() ? std::vector<Candidate>{c} : c.parts; }
+
+using Fixed = std::vector<std::pair<std::string, double>>;
+
+// `general` reduces to `special` by fixing some of its parameters: each part of `general` stays
+// what it is or becomes one of its catalogue special cases (one effect or several, at its place),
+// together they are the parts of `special`, and at least one part is strictly richer. `fixed`:
+// general's parameters (by name) fixed on the way, with their values.
+bool nests(const Candidate& general, const Candidate& special, Fixed* fixed = nullptr) {
+  const std::vector<Candidate> g = parts_of(general), s = parts_of(special);
+  std::vector<bool> used(s.size(), false);
+  std::vector<const SpecialCase*> via(g.size(), nullptr);
+  std::function<bool(std::size_t, bool)> match = [&](std::size_t k, bool richer) {
+    if (k == g.size()) return richer && std::find(used.begin(), used.end(), false) == used.end();
+    std::vector<std::size_t> here;  // the parts of `special` still free at this part's place
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (!used[i] && s[i].equation == g[k].equation) here.push_back(i);
+    for (unsigned mask = 1; mask < (1u << here.size()); ++mask) {
+      std::vector<std::string> effects;
+      for (std::size_t b = 0; b < here.size(); ++b)
+        if (mask & (1u << b)) effects.push_back(s[here[b]].effect);
+      const bool same = effects.size() == 1 && effects.front() == g[k].effect;
+      via[k] = same ? nullptr : find_special_case(effects, g[k].effect);
+      if (!same && !via[k]) continue;
+      for (std::size_t b = 0; b < here.size(); ++b)
+        if (mask & (1u << b)) used[here[b]] = true;
+      if (match(k + 1, richer || !same)) return true;
+      for (std::size_t b = 0; b < here.size(); ++b)
+        if (mask & (1u << b)) used[here[b]] = false;
+    }
+    return false;
+  };
+  if (!match(0, false)) return false;
+  if (fixed) {
+    fixed->clear();
+    for (std::size_t k = 0; k < g.size(); ++k)
+      if (via[k])
+        for (const auto& [role, value] : via[k]->fixed)
+          for (std::size_t q = 0; q < g[k].roles.size(); ++q)
+            if (g[k].roles[q] == role) fixed->emplace_back(g[k].parameters[q], value);
+  }
+  return true;
+}
+
+// The special cases of a one-effect hypothesis that no calibrated hypothesis stands for, built on
+// `current` (a set of two: the second generated on the first's model, as screening pairs them).
+std::vector<Candidate> missing_special_cases(const Context& c, const ModelFile& current, const SimulationResult& sim,
+                                             const Candidate& general, const std::vector<const Candidate*>& calibrated) {
+  std::vector<Candidate> out;
+  const PhysicsEffect* e = general.parts.empty() ? find_effect(general.effect) : nullptr;
+  if (!e) return out;
+  auto find = [&](const std::vector<Candidate>& in, const std::string& effect) -> const Candidate* {
+    for (const auto& k : in)
+      if (k.effect == effect && k.equation == general.equation) return &k;
+    return nullptr;
+  };
+  for (const auto& sc : e->special_cases) {
+    std::vector<std::string> set = sc.effects;
+    std::sort(set.begin(), set.end());
+    bool have = false;
+    for (const Candidate* k : calibrated) {
+      std::vector<std::string> effects;
+      for (const auto& part : parts_of(*k)) effects.push_back(part.effect);
+      std::sort(effects.begin(), effects.end());
+      have = have || (effects == set && nests(general, *k));
+    }
+    if (have || set.empty() || set.size() > 2) continue;
+    try {
+      const std::vector<Candidate> on_current = generate_candidates(current, sim, c.estimation);
+      const Candidate* first = find(on_current, set[0]);
+      if (!first || set.size() == 1) {
+        if (first) out.push_back(*first);
+        continue;
+      }
+      Simulator s(first->model, c.estimation, {c.options.screening_substeps});
+      const std::vector<Candidate> on_first = generate_candidates(first->model, s.simulate(s.parameter_values()), c.estimation);
+      if (const Candidate* second = find(on_first, set[1])) out.push_back(combine_candidates(*first, *second));
+    } catch (const std::exception&) {
+      // not buildable here: the richer law is judged against the special cases that were
+    }
+  }
+  return out;
+}
+
 // The shortlist: the best `k` by score (one delay per actuator), those consistent with the noise
-// bound, and the best two by equation error.
+// bound, the best two by equation error, and the special cases of every one of those (so that a
+// richer law is always judged against the law it contains, hypotheses.cpp's nested rule).
 std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   std::vector<const ScreenedHypothesis*> out;
   std::set<std::string> delay_seen;
@@ -181,6 +271,10 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
     if (std::isfinite(h.ee_gain) && h.ee_gain > 0.1) by_ee.push_back(&h);
   std::sort(by_ee.begin(), by_ee.end(), [](auto* a, auto* b) { return a->ee_gain > b->ee_gain; });
   for (std::size_t i = 0; i < std::min<std::size_t>(2, by_ee.size()); ++i) take(*by_ee[i]);
+  const std::size_t listed = out.size();
+  for (std::size_t i = 0; i < listed; ++i)
+    for (const auto& h : s.ranked)
+      if (nests(out[i]->candidate, h.candidate)) take(h);
   return out;
 }
 
@@ -258,11 +352,106 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
       e.noise_cost = noise.cost;
       return e;
     };
-    std::vector<std::size_t> ok;
+    // Nested hypotheses: a richer law is judged against each special case of it that was
+    // calibrated, by the same rules with that special case as the baseline (its extra parameters
+    // must remove the share of misfit the rules ask, on estimation and validation, and more than
+    // the noise). The switch-off rule does not apply: the special case, calibrated, is the richer
+    // law with its extra terms switched off and every other parameter free.
+    auto against = [&](const Trial& richer, const Trial& special) {
+      HypothesisEvidence e = evidence(richer);
+      e.cost_null = special.cost;
+      e.cost_null_validation = special.cost_val;
+      e.cost_neutral = kNaN;
+      return e;
+    };
     for (std::size_t i = 1; i < trials.size(); ++i) {
       if (!trials[i].ok) continue;
       trials[i].rules = check_rules(evidence(trials[i]), rules);
       trials[i].accepted = passes(trials[i].rules);
+    }
+    // The special cases of an accepted law that were not calibrated in this round are, as
+    // baselines of the nested rule only.
+    std::vector<Candidate> extra;
+    {
+      std::vector<const Candidate*> calibrated;
+      for (std::size_t j = 1; j < trials.size(); ++j)
+        if (trials[j].ok) calibrated.push_back(&trials[j].cand);
+      for (std::size_t i = 1; i < trials.size(); ++i)
+        if (trials[i].accepted)
+          for (auto& k : missing_special_cases(c, h.current, cur_res, trials[i].cand, calibrated)) {
+            bool dup = false;
+            for (const auto& x : extra) dup = dup || (x.effect == k.effect && x.equation == k.equation);
+            if (!dup) extra.push_back(std::move(k));
+          }
+    }
+    std::vector<Trial> baselines(extra.size());
+    parallel(opt.threads, extra.size(), [&](std::size_t i) { baselines[i] = refine(c, extra[i], {values_of(extra[i].model)}, h.known_scales); });
+    std::vector<const Trial*> special_cases;
+    for (std::size_t j = 1; j < trials.size(); ++j)
+      if (trials[j].ok) special_cases.push_back(&trials[j]);
+    for (const auto& b : baselines)
+      if (b.ok) special_cases.push_back(&b);
+    // ... and the data must exclude the special case: the richer law's bounded-error interval of
+    // a parameter fixed on the way leaves out the fixed value (a richer law whose extra term could
+    // be zero fits better only by fitting what else the model leaves out).
+    std::map<std::size_t, std::map<std::string, std::array<double, 3>>> intervals;  // estimate, lo, hi
+    auto interval_of = [&](std::size_t i, const std::string& name) -> std::array<double, 3> {
+      if (!intervals.count(i)) {
+        auto& box = intervals[i];
+        try {
+          // At the law's optimum, as stage 4 computes them: the calibration continued (a second
+          // budget: a rough cost such as Stribeck's stops short of it), then refined with the
+          // final substeps.
+          const Trial& t = trials[i];
+          Simulator fast(t.model, c.estimation, {opt.screening_substeps}), s(t.model, c.estimation, {opt.final_substeps});
+          const std::vector<int> fr = s.free_parameters();
+          auto ks = h.known_scales;
+          for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) ks.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
+          CalibrationOptions o;
+          o.scale = scales_for(t.model, fr, ks);
+          o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
+          const CalibrationResult further = calibrate(fast, values_of(t.model), fr, o);
+          const CalibrationResult r =
+              refine_with_final_substeps(c, s, further.ok && further.cost < t.cost ? further.parameters : values_of(t.model), fr, o);
+          if (!r.ok) throw NumericalError("the law blows up with the final substeps");
+          const Eigen::MatrixXd J = output_jacobian(s, r.parameters, fr, o.scale, r.outputs);
+          const OutputErrorIntervals oe = output_error_intervals(J, s.measured() - r.outputs, r.parameters, fr, o.scale);
+          for (std::size_t k = 0; oe.built && k < fr.size(); ++k)
+            box[t.model.parameters[static_cast<std::size_t>(fr[k])].name] = {r.parameters[fr[k]], oe.lo[k], oe.hi[k]};
+        } catch (const std::exception&) {
+          // no interval: the special case is not excluded
+        }
+      }
+      const auto& box = intervals[i];
+      const auto it = box.find(name);
+      return it == box.end() ? std::array<double, 3>{kNaN, -inf, inf} : it->second;
+    };
+    auto excludes = [&](std::size_t i, const Fixed& fixed, std::string& why) {
+      if (fixed.empty()) return true;  // reached by equalities only: the rules alone decide
+      for (const auto& [name, value] : fixed) {
+        const auto [estimate, lo, hi] = interval_of(i, name);
+        if (value < lo || value > hi) return true;
+        why += (why.empty() ? "" : ", ") + name + " = " + fmt(estimate) + " in [" + fmt(lo) +
+               ", " + fmt(hi) + "] holds " + fmt(value);
+      }
+      return false;
+    };
+    std::vector<std::size_t> ok;
+    std::map<std::size_t, std::string> beats;  // a richer law kept: the special cases it beat
+    for (std::size_t i = 1; i < trials.size(); ++i) {
+      for (const Trial* j : special_cases) {
+        Fixed fixed;
+        if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
+        if (!passes(check_rules(against(trials[i], *j), rules))) {
+          trials[i].accepted = false;
+          trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
+        } else if (std::string why; !excludes(i, fixed, why)) {
+          trials[i].accepted = false;
+          trials[i].not_beyond = j->cand.effect + " (bounded-error interval: " + why + ")";
+        } else {
+          beats[i] += (beats[i].empty() ? "" : ", ") + j->cand.effect;
+        }
+      }
       if (trials[i].accepted) ok.push_back(i);
     }
     for (std::size_t i = 1; i < trials.size(); ++i) {
@@ -273,7 +462,9 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
       else {
         line << "misfit " << fixed1(100 * t.cost / std::max(cost_cur, 1e-300)) << " % of the current model's";
         if (c.validation) line << ", validation " << fixed1(100 * t.cost_val / std::max(cost_cur_val, 1e-300)) << " %";
-        line << (t.accepted ? ", passes every rule" : ", fails a rule");
+        line << (t.accepted             ? ", passes every rule"
+                 : t.not_beyond.empty() ? ", fails a rule"
+                                        : ", not beyond its special case " + t.not_beyond);
       }
       c.say(line.str());
     }
@@ -290,6 +481,17 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     for (std::size_t i : ok) {
       if (score(i) < score(pick)) pick = i;
       if ((c.validation ? trials[i].cost_val : trials[i].cost) < (c.validation ? trials[best].cost_val : trials[best].cost)) best = i;
+    }
+    // Between nested hypotheses the rules decide, not the parameter count: an accepted richer law
+    // has passed them against the special case picked.
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (std::size_t i : ok)
+        if (nests(trials[i].cand, trials[pick].cand)) {
+          pick = i;
+          moved = true;
+          break;
+        }
     }
     if (trials[pick].cand.effect == "time_delay") {
       // Refine the number of samples; the refined delay must pass the rules too.
@@ -338,6 +540,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
       if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
       ev << " (screened " << screening.ranked.size() << " hypotheses, refined " << list.size() << ", " << ok.size() << " passed every rule";
       if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the sparser explanation";
+      if (beats.count(pick)) ev << "; preferred to " << beats[pick] << ", its special case, by the same rules";
       ev << ")";
       if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
       e.evidence = ev.str();

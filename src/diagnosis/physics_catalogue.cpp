@@ -14,47 +14,51 @@ namespace sets {
 const std::vector<PhysicsEffect>& physics_catalogue() {
   static const std::vector<PhysicsEffect> c = {
       {"coulomb_friction", "additive", "force balance of a velocity state v that changes sign", "- Fc*sign(v)",
-       "residual force is a square wave in the sign of v: a jump at every reversal, constant in between"},
+       "residual force is a square wave in the sign of v: a jump at every reversal, constant in between", {}},
       {"stribeck_friction", "additive", "force balance of a velocity state v that changes sign",
        "- sign(v)*(Fc + Fs*exp(-(v/vs)^2))",
-       "like Coulomb friction plus an excess that decays with |v| (breakaway near zero velocity)"},
+       "like Coulomb friction plus an excess that decays with |v| (breakaway near zero velocity)",
+       {{{"coulomb_friction"}, {{"Fs", 0.0}}}}},
       {"viscous_friction", "additive", "force balance of a velocity state v that changes sign", "- Fv*v",
-       "residual force proportional to v (a straight line through 0 against v)"},
+       "residual force proportional to v (a straight line through 0 against v)", {}},
       {"quadratic_drag", "additive", "force balance of a velocity state v that changes sign", "- Cd*v*abs(v)",
-       "residual force grows with v^2 and keeps the sign of v; small at low speed"},
+       "residual force grows with v^2 and keeps the sign of v; small at low speed", {}},
       {"asymmetric_friction", "additive", "force balance of a velocity state v that changes sign",
        "- (Fc_pos*(v > 0) - Fc_neg*(v < 0) + dFv*v*(v > 0))",
        "friction differs with the direction of motion: the residual force against v has a different step and "
-       "slope on the two sides of zero"},
+       "slope on the two sides of zero",
+       // Fc_pos = Fc_neg, dFv = 0; or dFv = 0 alone: Coulomb friction and an offset (equal but at v = 0).
+       {{{"coulomb_friction"}, {{"dFv", 0.0}}}, {{"coulomb_friction", "constant_offset"}, {{"dFv", 0.0}}}}},
       {"constant_offset", "additive", "any state equation that is not a kinematic identity q' = v", "- offset",
-       "residual of constant sign and size, independent of the operating point"},
+       "residual of constant sign and size, independent of the operating point", {}},
       {"cubic_stiffness", "additive", "force balance (cubic in the pair's position q) or the equation of a state x "
-       "that changes sign", "- k3*q^3", "residual grows with the cube of the displacement: concentrated at large |q|"},
+       "that changes sign", "- k3*q^3", "residual grows with the cube of the displacement: concentrated at large |q|",
+       {}},
       {"bouc_wen_hysteresis", "own state", "force balance of a mechanical pair (q, v): a restoring force z with its "
        "own state", "- z, z' = alpha*v - beta*(gamma*abs(v)*abs(z)^(n-1)*z + delta*v*abs(z)^n)",
-       "residual force against q is a loop: it depends on the direction of motion and saturates between reversals"},
+       "residual force against q is a loop: it depends on the direction of motion and saturates between reversals", {}},
       {"backlash", "actuator", "an actuator signal a (input or sampled signal driving a state equation)",
        "a -> max(a - b, min(a + b, prev(a_bl, 1)))",
-       "the effective drive lags by a play band 2b after every reversal of a; error at reversals of the drive"},
+       "the effective drive lags by a play band 2b after every reversal of a; error at reversals of the drive", {}},
       {"dead_zone", "actuator", "an actuator signal a", "a -> a - min(max(a, -d), d)",
-       "small drives have no effect: residual concentrated where |a| is small"},
+       "small drives have no effect: residual concentrated where |a| is small", {}},
       {"input_saturation", "actuator", "an actuator signal a", "a -> min(max(a, -umax), umax)",
-       "residual only where |a| is large (the model drives harder than the plant can)"},
+       "residual only where |a| is large (the model drives harder than the plant can)", {}},
       {"output_saturation", "sensor", "an output y (the sensor)", "y -> min(max(y, y_lo), y_hi)",
-       "measured output flat at a level while the model goes beyond it: residual near a limit"},
+       "measured output flat at a level while the model goes beyond it: residual near a limit", {}},
       {"sqrt_outflow", "replaces a*x", "a linear outflow a*x of a level-like state x (x >= 0) replaced by its "
        "square-root law", "a*x -> a_sqrt*sqrt(max(x, 0))",
-       "residual depends on the level: a linear outflow is too weak at low level, too strong at high"},
+       "residual depends on the level: a linear outflow is too weak at low level, too strong at high", {}},
       {"state_saturation", "state limit", "the equation of a state that is not a kinematic identity: the state "
        "cannot pass a limit (overflow, end stop)", "x' = f -> f - max(f, 0)*(x >= x_max)  (or min(f, 0)*(x <= x_min))",
        "the measured state stays flat at a level while the model goes beyond it, and leaves it as soon as the "
-       "drive turns (unlike a sensor limit, the dynamics after the flat part start from the limit)"},
+       "drive turns (unlike a sensor limit, the dynamics after the flat part start from the limit)", {}},
       {"time_delay", "actuator", "an actuator signal a", "a -> prev(a, n)",
-       "residual looks like the derivative of the response: largest just after changes of the drive"},
+       "residual looks like the derivative of the response: largest just after changes of the drive", {}},
       {"hysteresis", "sensor", "an output y (sensor with a play band)", "y -> max(y - w, min(y + w, prev(y_h, 1)))",
-       "measured output lags by w with the sign of its rate; offset flips at reversals of the output"},
+       "measured output lags by w with the sign of its rate; offset flips at reversals of the output", {}},
       {"absolute_value_sensor", "sensor", "an output y", "y -> abs(y)",
-       "measured output never negative; residual where the model output is negative (mirror image)"},
+       "measured output never negative; residual where the model output is negative (mirror image)", {}},
   };
   return c;
 }
@@ -62,6 +66,18 @@ const std::vector<PhysicsEffect>& physics_catalogue() {
 const PhysicsEffect* find_effect(const std::string& name) {
   for (const auto& e : physics_catalogue())
     if (e.name == name) return &e;
+  return nullptr;
+}
+
+const SpecialCase* find_special_case(std::vector<std::string> effects, const std::string& general) {
+  const PhysicsEffect* g = find_effect(general);
+  if (!g) return nullptr;
+  std::sort(effects.begin(), effects.end());
+  for (const auto& sc : g->special_cases) {
+    std::vector<std::string> e = sc.effects;
+    std::sort(e.begin(), e.end());
+    if (e == effects) return &sc;
+  }
   return nullptr;
 }
 

@@ -123,3 +123,34 @@ TEST(PhysicsCatalogue, AsymmetricFrictionIsNamed) {
     EXPECT_NEAR(ep.estimate, truth_value, 0.25 * truth_value + 0.05) << ep.role;
   }
 }
+
+// Nested hypotheses (hypotheses.cpp): every special case a law declares is made of catalogue
+// effects that enter at the law's own place, and the parameters it fixes are the law's own roles.
+TEST(PhysicsCatalogue, SpecialCasesAreCatalogueEffectsAtTheSamePlace) {
+  const std::string model = R"j({"time": "t", "inputs": {"u": "u"},
+    "parameters": {"m": 1.0, "k": 4.0, "c": 0.5},
+    "states": {"x": 0.0, "v": 0.0},
+    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})j";
+  const SyntheticPlant pl = test::simulated_plant(model, model, 2000, 0.01, {"u", -2, 2, 0.5, 3}, 0.01, 5);
+  const auto cs = candidates_of(pl.nominal, pl.estimation);
+  int declared = 0;
+  for (const auto& e : physics_catalogue())
+    for (const auto& sc : e.special_cases) {
+      ++declared;
+      const Candidate* general = find(cs, e.name, "v");
+      ASSERT_NE(general, nullptr) << e.name;
+      for (const auto& s : sc.effects) {
+        EXPECT_NE(find_effect(s), nullptr) << s;
+        EXPECT_NE(find(cs, s, "v"), nullptr) << s << " does not enter where " << e.name << " does";
+      }
+      EXPECT_EQ(find_special_case(sc.effects, e.name), &sc);
+      for (const auto& [role, value] : sc.fixed) {
+        const auto it = std::find(general->roles.begin(), general->roles.end(), role);
+        ASSERT_NE(it, general->roles.end()) << e.name << " has no parameter " << role;
+        EXPECT_EQ(general->neutral[static_cast<std::size_t>(it - general->roles.begin())], value) << role;
+      }
+    }
+  EXPECT_GE(declared, 3);
+  EXPECT_EQ(find_special_case({"coulomb_friction"}, "viscous_friction"), nullptr);
+  EXPECT_NE(find_special_case({"constant_offset", "coulomb_friction"}, "asymmetric_friction"), nullptr);  // any order
+}

@@ -13,6 +13,16 @@
 
 namespace sets {
 
+/// A catalogue effect, alone or together with others at the same place, that a richer effect
+/// becomes when some of its parameters are fixed (coulomb_friction is stribeck_friction with Fs = 0).
+struct SpecialCase {
+  std::vector<std::string> effects;
+  /// Parameters (by role) fixed at a value to get there: the data exclude the special case when
+  /// the bounded-error interval of one of them excludes its value. A special case that also needs
+  /// an equality between parameters (Fc_pos = Fc_neg) lists only the fixed values here.
+  std::vector<std::pair<std::string, double>> fixed;
+};
+
 struct PhysicsEffect {
   std::string name;        // stable name, e.g. "coulomb_friction"
   std::string placement;   // structural place: "additive", "replaces a*x", "actuator", "sensor",
@@ -20,11 +30,17 @@ struct PhysicsEffect {
   std::string enters;      // where it can enter a model, in words
   std::string term;        // the added term with its parameters
   std::string signature;   // what the residual looks like when it is missing
+  /// What this effect becomes with some of its parameters fixed. The diagnosis names the richer
+  /// law only when it passes the acceptance rules against each of them and the data exclude them
+  /// (hypotheses.cpp, docs/methods/diagnosis.md "Nested hypotheses").
+  std::vector<SpecialCase> special_cases;
 };
 
 /// Every entry, in a fixed order.
 const std::vector<PhysicsEffect>& physics_catalogue();
 const PhysicsEffect* find_effect(const std::string& name);
+/// The special case of `general` that `effects` (together, at one place, in any order) are; null if none.
+const SpecialCase* find_special_case(std::vector<std::string> effects, const std::string& general);
 
 /// One way of adding one effect to one place of a model.
 struct Candidate {
