@@ -9,7 +9,7 @@
 #include <random>
 
 #include "sets/examples/cerone_regruto.hpp"
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 
 namespace {
 

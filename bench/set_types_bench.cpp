@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/ellipsoid.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/vpolytope.hpp"

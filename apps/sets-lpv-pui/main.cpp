@@ -18,7 +18,7 @@
 #include "sets/core/error.hpp"
 #include "sets/core/exit_code.hpp"
 #include "sets/data/recording.hpp"
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 #include "structure_flags.hpp"
 #include "tables.hpp"
 

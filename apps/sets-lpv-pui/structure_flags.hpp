@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/models/lpv_model.hpp"
 
 /// --model, or --a/--b (one comma-separated basis list per coefficient), or by default (one
 /// scheduling column) the structure of Cerone & Regruto's example. InputError names the flag.

@@ -14,15 +14,18 @@
 #include "sets/numeric/safe_bound.hpp"
 #include "sets/numeric/tight_range.hpp"
 
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/ellipsoid.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/set_io.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/domains/vpolytope.hpp"
 #include "sets/domains/zonotope.hpp"
 
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/fps/outer_zonotope.hpp"
 
+#include "sets/models/lpv_model.hpp"
 #include "sets/models/model_file.hpp"
 #include "sets/models/orthonormal_basis.hpp"
 #include "sets/models/state_space_model.hpp"
@@ -35,7 +38,7 @@
 #include "sets/data/simulation.hpp"
 #include "sets/data/spectrum.hpp"
 
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"

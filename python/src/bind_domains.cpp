@@ -4,6 +4,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/ellipsoid.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/set_io.hpp"

@@ -7,7 +7,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "sets/methods/hinf_bound/hinf_bound.hpp"
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 #include "sets/methods/ss_uncertainty/canonical_fps.hpp"
 #include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
@@ -284,7 +284,8 @@ void bind_hinf(py::module_& m) {
            int order, const Eigen::Ref<const VectorXd>& grid, const HinfPriors& priors, const HinfBoundOptions& options,
            std::optional<VectorXd> instrument) {
           py::gil_scoped_release release;
-          return hinf_bound(u, y, basis, order, grid, priors, options, instrument ? &*instrument : nullptr);
+          return hinf_bound(HinfData{u, y, instrument ? *instrument : VectorXd()}, HinfStructure{basis, order, priors, grid},
+                            options);
         },
         py::arg("u"), py::arg("y"), py::arg("basis"), py::arg("order"), py::arg("grid"), py::arg("priors"),
         py::arg("options") = HinfBoundOptions{}, py::arg("instrument") = py::none(),

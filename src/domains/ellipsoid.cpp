@@ -506,25 +506,6 @@ Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y
 
 // ------------------------------------------------------------------------------- output
 
-Eigen::MatrixXd outer_polygon(const Ellipsoid& E, int n) {
-  if (E.dimension() != 2) throw InputError("outer_polygon: the ellipsoid is not 2-D");
-  if (n < 3) throw InputError("outer_polygon: need at least 3 vertices");
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(E.shape());
-  const Eigen::Vector2d l = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  Eigen::Matrix2d Q = es.eigenvectors();
-  if (Q.determinant() < 0) Q.col(1) *= -1;  // keep the vertices counter-clockwise
-  const Eigen::Matrix2d L = Q * l.asDiagonal();
-  // A regular n-gon with inradius 1 (circumradius 1/cos(pi/n)) contains the unit disc; its
-  // image under L contains E. The small factor absorbs rounding in L.
-  const double R = (1.0 + 1e-9) / std::cos(std::numbers::pi / n);
-  Eigen::MatrixXd V(2, n);
-  for (int k = 0; k < n; ++k) {
-    const double t = 2.0 * std::numbers::pi * (k + 0.5) / n;
-    V.col(k) = E.center() + L * Eigen::Vector2d(R * std::cos(t), R * std::sin(t));
-  }
-  return V;
-}
-
 std::string to_string(const Ellipsoid& E) {
   std::ostringstream os;
   os.precision(17);

@@ -24,20 +24,6 @@ HPolytope::HPolytope(Eigen::MatrixXd A, Eigen::VectorXd b) : A_(std::move(A)), b
     if (b_[i] == -inf) throw InputError("HPolytope: b(" + std::to_string(i) + ") is -inf");
 }
 
-HPolytope to_hpolytope(const IntervalVector& box) {
-  const auto n = box.size();
-  Eigen::MatrixXd A(2 * n, n);
-  Eigen::VectorXd b(2 * n);
-  A.setZero();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    A(2 * i, i) = 1;
-    b[2 * i] = box[i].upper();
-    A(2 * i + 1, i) = -1;
-    b[2 * i + 1] = -box[i].lower();
-  }
-  return HPolytope(A, b);
-}
-
 BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x) {
   if (x.size() != P.dimension())
     throw InputError("contains: point has " + std::to_string(x.size()) + " entries, polytope dimension " +

@@ -14,7 +14,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
-#include "sets/domains/vpolytope.hpp"
+#include "sets/domains/conversions.hpp"
 
 namespace sets {
 

@@ -13,6 +13,7 @@
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
 #include "sets/core/printable.hpp"
+#include "sets/domains/conversions.hpp"
 
 namespace sets {
 

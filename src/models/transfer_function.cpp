@@ -16,18 +16,6 @@ namespace {
 constexpr double pi = std::numbers::pi;
 constexpr int grid_points = 8192;  // grid of the certified sup / inf bounds
 
-// sum_k c_k e^{-ikw} (Horner).
-std::complex<double> poly_at(const Eigen::VectorXd& c, double w) {
-  std::complex<double> s = 0;
-  for (Eigen::Index k = c.size() - 1; k >= 0; --k) s = s * std::polar(1.0, -w) + c[k];
-  return s;
-}
-// sum_k k |c_k| >= sup_w |d/dw c(e^{-iw})|.
-double weighted_l1(const Eigen::VectorXd& c) {
-  double s = 0;
-  for (Eigen::Index k = 0; k < c.size(); ++k) s += k * std::abs(c[k]);
-  return s;
-}
 // prod (1 - |p_i|) <= |a(e^{iw})| when the moduli are known; 0 (no information) otherwise.
 double closed_form_amin(const std::vector<double>& moduli) {
   if (moduli.empty()) return 0;
@@ -39,18 +27,30 @@ double closed_form_amin(const std::vector<double>& moduli) {
 // less (spacing/2) sup|a'| (real coefficients: |a| is even in w, so [0, pi] suffices).
 double a_min(const TransferFunction& f) {
   double g = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < grid_points; ++i) g = std::min(g, std::abs(poly_at(f.a, pi * i / (grid_points - 1))));
-  return std::max(closed_form_amin(f.pole_moduli), g - 0.5 * pi / (grid_points - 1) * weighted_l1(f.a));
+  for (int i = 0; i < grid_points; ++i) g = std::min(g, std::abs(polynomial_at(f.a, pi * i / (grid_points - 1))));
+  return std::max(closed_form_amin(f.pole_moduli), g - 0.5 * pi / (grid_points - 1) * polynomial_derivative_bound(f.a));
 }
 }  // namespace
 
-std::complex<double> TransferFunction::operator()(double w) const { return poly_at(b, w) / poly_at(a, w); }
+std::complex<double> polynomial_at(const Eigen::Ref<const Eigen::VectorXd>& c, double w) {
+  std::complex<double> s = 0;
+  for (Eigen::Index k = c.size() - 1; k >= 0; --k) s = s * std::polar(1.0, -w) + c[k];
+  return s;
+}
+
+double polynomial_derivative_bound(const Eigen::Ref<const Eigen::VectorXd>& c) {
+  double s = 0;
+  for (Eigen::Index k = 0; k < c.size(); ++k) s += k * std::abs(c[k]);
+  return s;
+}
+
+std::complex<double> TransferFunction::operator()(double w) const { return polynomial_at(b, w) / polynomial_at(a, w); }
 
 std::complex<double> TransferFunction::derivative(double w) const {
   std::complex<double> db = 0, da = 0;
   for (Eigen::Index k = 1; k < b.size(); ++k) db += -std::complex<double>(0, k) * b[k] * std::polar(1.0, -k * w);
   for (Eigen::Index k = 1; k < a.size(); ++k) da += -std::complex<double>(0, k) * a[k] * std::polar(1.0, -k * w);
-  const auto B = poly_at(b, w), A = poly_at(a, w);
+  const auto B = polynomial_at(b, w), A = polynomial_at(a, w);
   return (db * A - B * da) / (A * A);
 }
 
@@ -87,7 +87,7 @@ Eigen::VectorXd TransferFunction::filter(const Eigen::Ref<const Eigen::VectorXd>
 
 double TransferFunction::derivative_bound() const {
   const double m = a_min(*this);
-  return weighted_l1(b) / m + b.cwiseAbs().sum() * weighted_l1(a) / (m * m);
+  return polynomial_derivative_bound(b) / m + b.cwiseAbs().sum() * polynomial_derivative_bound(a) / (m * m);
 }
 
 double TransferFunction::hinf_bound() const {

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/ellipsoid.hpp"
 #include "sets/core/error.hpp"
 

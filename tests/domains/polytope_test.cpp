@@ -17,6 +17,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/vpolytope.hpp"
 #include "sets/domains/zonotope.hpp"

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "sets/core/error.hpp"
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/set_io.hpp"
 #include "support/messages.hpp"
 

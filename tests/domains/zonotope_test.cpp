@@ -10,6 +10,7 @@
 #include <random>
 
 #include "sets/core/error.hpp"
+#include "sets/domains/conversions.hpp"
 #include "sets/domains/zonotope.hpp"
 
 namespace {

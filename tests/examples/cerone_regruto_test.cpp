@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "sets/examples/cerone_regruto.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 
 TEST(CeroneRegrutoExample, ErrorsStayWithinTheirBoundsAndThetaIsCovered) {
   std::mt19937_64 rng(3);

@@ -11,6 +11,9 @@
 // the exact one. `support` and `outer_box` are rigorous upper bounds; `contains` answers
 // yes/no only when it can prove it. `project` is exact (a sub-block of P). `slice` and `volume`
 // are computed in floating point (approximate; see their comments).
+//
+// The generic operations (support, outer_box, contains, linear_map, to_string) are declared in
+// set_operations.hpp, the conversions to other set types in conversions.hpp.
 
 #include <Eigen/Core>
 
@@ -19,6 +22,7 @@
 #include <vector>
 
 #include "sets/core/bool_interval.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -65,22 +69,12 @@ Ellipsoid project(const Ellipsoid& E, const std::vector<int>& coords);
 std::optional<Ellipsoid> slice(const Ellipsoid& E, const std::vector<int>& coords,
                                const Eigen::VectorXd& fixed_values_of_other_coords);
 
-/// Rigorous upper bound on max_{x in E} d^T x = d^T c + sqrt(d^T P d).
-double support(const Ellipsoid& E, const Eigen::VectorXd& d);
-/// Guaranteed bounding box c_i +- sqrt(P_ii), rounded outward.
-IntervalVector outer_box(const Ellipsoid& E);
-/// Is x in E? yes/no only when proven in interval arithmetic; unknown near the boundary and for
-/// most points of a flat ellipsoid (rounding cannot decide membership in a lower-dimensional set).
-BoolInterval contains(const Ellipsoid& E, const Eigen::VectorXd& x);
 /// Volume (Lebesgue measure) = vol(unit ball) sqrt(det P); 0 for a flat ellipsoid.
 /// Floating point (approximate, not a bound).
 double volume(const Ellipsoid& E);
 /// Smallest eigenvalue over largest (0 for flat ellipsoids); floating point.
 double flatness(const Ellipsoid& E);
 
-/// Image A E = {A x : x in E}: centre A c, shape A P A^T (enlarged for rounding, so it contains
-/// the exact image). A may be rectangular.
-Ellipsoid linear_map(const Eigen::MatrixXd& A, const Ellipsoid& E);
 /// E + b.
 Ellipsoid translate(const Ellipsoid& E, const Eigen::VectorXd& b);
 
@@ -111,12 +105,6 @@ Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y
 Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
                           EllipsoidCriterion criterion);
 
-/// Outer approximation of the ellipsoid by a convex polygon, for plotting a 2-D ellipsoid:
-/// `n` vertices (counter-clockwise) of a polygon circumscribed about E (each edge tangent to E), so the polygon
-/// contains E. Throws InputError unless E is 2-D.
-Eigen::MatrixXd outer_polygon(const Ellipsoid& E, int n = 64);
-
-/// Human-readable text ("Ellipsoid(dim=2, center=[..], shape=[[..],[..]])").
-std::string to_string(const Ellipsoid& E);
+static_assert(ConvexSet<Ellipsoid>);  // the generic operations, sets/domains/set_operations.hpp
 
 }  // namespace sets

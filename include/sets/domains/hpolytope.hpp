@@ -8,6 +8,9 @@
 // cannot be certified the answer is +inf (still a bound, just useless) — this happens only for
 // unbounded polytopes. Operations that can only enlarge (remove_redundant) or are built from
 // certified bounds (linear_map) return polytopes that contain the exact result.
+//
+// The generic operations (support, outer_box, contains, linear_map, to_string) are declared in
+// set_operations.hpp, the conversions to other set types in conversions.hpp.
 
 #include <Eigen/Core>
 
@@ -16,6 +19,7 @@
 #include <vector>
 
 #include "sets/core/bool_interval.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -37,21 +41,8 @@ class HPolytope {
   Eigen::VectorXd b_;
 };
 
-/// The box as 2n half-spaces (exact).
-HPolytope to_hpolytope(const IntervalVector& box);
-
-/// Is x in P? `unknown` when some a_i^T x - b_i cannot be sign-decided in interval arithmetic.
-BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x);
 /// yes/no from the exact rational simplex; `unknown` only if that solver fails.
 BoolInterval is_empty(const HPolytope& P);
-/// Guaranteed box containing P (+-inf ends where P is unbounded or the end cannot be certified).
-/// Throws EmptySetError if P is empty.
-IntervalVector outer_box(const HPolytope& P);
-/// Rigorous upper bound on max_{x in P} d^T x (+inf if unbounded or not certifiable).
-/// Throws EmptySetError if P is empty.
-double support(const HPolytope& P, const Eigen::VectorXd& d);
-/// Rigorous upper bounds for several directions at once (one LP set-up).
-std::vector<double> support(const HPolytope& P, const std::vector<Eigen::VectorXd>& directions);
 
 /// Largest inscribed ball (floating point LP, not a guarantee). radius = inf if P contains
 /// arbitrarily large balls, 0 for a flat polytope. Throws EmptySetError if P is empty.
@@ -66,11 +57,7 @@ HPolytope intersect(const HPolytope& P, const HPolytope& Q);
 /// Removes rows that the LP finds redundant (its optimum, in floating point, does not exceed
 /// b_i), zero rows with b >= 0, and exact duplicates. Removing rows can only enlarge the set, so the result always contains P.
 HPolytope remove_redundant(const HPolytope& P);
-/// Image A P for square invertible A: normals A^{-T} a_i (rounded) with certified offsets, so
-/// the result contains A P and equals it up to rounding. Throws UnsupportedError for singular
-/// or non-square A (a projection; use to_vpolytope in 2-D/3-D) and for unbounded P.
-HPolytope linear_map(const Eigen::MatrixXd& A, const HPolytope& P);
 
-std::string to_string(const HPolytope& P);
+static_assert(ConvexSet<HPolytope>);  // the generic operations, sets/domains/set_operations.hpp
 
 }  // namespace sets

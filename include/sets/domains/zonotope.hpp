@@ -6,6 +6,9 @@
 // outward-rounded interval arithmetic and adds the rounding error as extra axis-aligned
 // generators, so the stored zonotope contains the exact one. Rank-deficient ("flat") generator
 // matrices are allowed everywhere.
+//
+// The generic operations (support, outer_box, contains, linear_map, to_string) are declared in
+// set_operations.hpp, the conversions to other set types in conversions.hpp.
 
 #include <Eigen/Core>
 
@@ -13,7 +16,7 @@
 #include <string>
 
 #include "sets/core/bool_interval.hpp"
-#include "sets/domains/hpolytope.hpp"
+#include "sets/domains/set_operations.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -40,20 +43,9 @@ class Zonotope {
   Eigen::MatrixXd G_;
 };
 
-/// A Z + b (b optional): centre A c + b, generators A G, plus rounding generators.
-Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z);
 Zonotope translate(const Zonotope& Z, const Eigen::VectorXd& b);
 /// Z1 + Z2: centres added, generators concatenated (exact up to rounding of the centre).
 Zonotope minkowski_sum(const Zonotope& Z1, const Zonotope& Z2);
-
-/// Interval hull c_i +- sum_j |G_ij|, rounded outward (the tightest box containing Z).
-IntervalVector outer_box(const Zonotope& Z);
-/// Rigorous upper bound on max_{x in Z} d^T x = d^T c + sum_j |d^T g_j|.
-double support(const Zonotope& Z, const Eigen::VectorXd& d);
-/// Is x in Z? Decided by the LP  min t  s.t.  G xi = x - c, |xi_j| <= t. `no` is certified by a
-/// separating direction (support function), `yes` by a feasible xi whose residual is absorbed
-/// with a verified inverse of n independent generators; otherwise `unknown`.
-BoolInterval contains(const Zonotope& Z, const Eigen::VectorXd& x);
 
 /// Order-reduction methods: each keeps the `order*n - n` most important generators and
 /// encloses the rest in a parallelotope (a box in Girard's and Combastel's methods, a box in the
@@ -69,15 +61,6 @@ Zonotope reduce_order(const Zonotope& Z, double order, ReductionMethod method = 
 /// Removes zero generators and merges parallel ones (exact up to rounding; contains Z).
 Zonotope compact(const Zonotope& Z);
 
-/// Outer H-polytope of Z. Exact facet enumeration (each facet normal from n-1 generators, in the
-/// span of G for flat zonotopes, plus equality pairs orthogonal to the span); offsets are
-/// rigorous support bounds, so the polytope always contains Z and equals it up to rounding.
-/// Throws UnsupportedError when the number of facet candidates C(m, r-1) exceeds `max_facets`.
-HPolytope to_hpolytope(const Zonotope& Z, long max_facets = 200000);
-/// Vertices of a 2-D zonotope in counter-clockwise order (a polygon a plotting tool can draw).
-/// Floating point (vertices exact up to rounding). Throws InputError unless Z is 2-D.
-Eigen::MatrixXd polygon_vertices(const Zonotope& Z);
-
 /// Alamo–Bravo–Camacho (2005) update: an outer zonotope of Z ∩ {x : |y - a^T x| <= delta},
 ///   c + lambda (y - a^T c) + [(I - lambda a^T) G, delta lambda] B,
 /// with lambda = G G^T a / (a^T G G^T a + delta^2) (minimum Frobenius norm of the generators).
@@ -85,6 +68,6 @@ Eigen::MatrixXd polygon_vertices(const Zonotope& Z);
 std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::VectorXd& a, double y,
                                             double delta);
 
-std::string to_string(const Zonotope& Z);
+static_assert(ConvexSet<Zonotope>);  // the generic operations, sets/domains/set_operations.hpp
 
 }  // namespace sets

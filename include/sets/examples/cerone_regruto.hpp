@@ -8,7 +8,7 @@
 #include <array>
 #include <random>
 
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/models/lpv_model.hpp"
 
 namespace sets::cerone_regruto {
 

@@ -11,6 +11,11 @@
 
 namespace sets {
 
+/// c(e^{iw}) = sum_k c_k e^{-ikw}, a polynomial in z^-1 on the unit circle (Horner).
+std::complex<double> polynomial_at(const Eigen::Ref<const Eigen::VectorXd>& c, double w);
+/// sum_k k |c_k|: an upper bound on sup_w |d/dw c(e^{iw})|.
+double polynomial_derivative_bound(const Eigen::Ref<const Eigen::VectorXd>& c);
+
 /// G(z) = (b0 + b1 z^-1 + ...) / (1 + a1 z^-1 + ...), a(0) == 1, evaluated at z = e^{iw}.
 struct TransferFunction {
   Eigen::VectorXd b, a;

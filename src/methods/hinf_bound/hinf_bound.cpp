@@ -24,31 +24,20 @@ std::string num(double x) {
   return os.str();
 }
 
-// Polynomial sum_k c_k e^{-ikw} and sum_k k|c_k| (a bound on its derivative in w).
-std::complex<double> poly_at(const Eigen::VectorXd& c, double w) {
-  std::complex<double> s = 0;
-  for (Eigen::Index k = c.size() - 1; k >= 0; --k) s = s * std::polar(1.0, -w) + c[k];
-  return s;
-}
-double weighted_l1(const Eigen::VectorXd& c) {
-  double s = 0;
-  for (Eigen::Index k = 0; k < c.size(); ++k) s += k * std::abs(c[k]);
-  return s;
-}
-// Rigorous lower bound on min_w |c(e^{-iw})| over [0, pi] (real coefficients: |c| is even in w):
-// the minimum over a grid of spacing d, less (d/2) sup|c'|.
-// Second order: g = |c|^2 has |g''| <= 2((sum k|c_k|)^2 + sum|c_k| sum k^2|c_k|), and between two
-// grid points g >= min(ends) - spacing^2/8 sup|g''|.
-double weighted_l2(const Eigen::VectorXd& c) {
+// sum_k k^2 |c_k| >= sup_w |d^2/dw^2 c(e^{iw})|.
+double polynomial_second_derivative_bound(const Eigen::VectorXd& c) {
   double s = 0;
   for (Eigen::Index k = 0; k < c.size(); ++k) s += double(k) * k * std::abs(c[k]);
   return s;
 }
+// Rigorous lower bound on min_w |c(e^{-iw})| over [0, pi] (real coefficients: |c| is even in w):
+// g = |c|^2 has |g''| <= 2((sum k|c_k|)^2 + sum|c_k| sum k^2|c_k|), and between two grid points
+// g >= min(ends) - spacing^2/8 sup|g''|.
 double poly_min_modulus(const Eigen::VectorXd& c) {
-  const double l1 = weighted_l1(c), g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * weighted_l2(c));
+  const double l1 = polynomial_derivative_bound(c), g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * polynomial_second_derivative_bound(c));
   for (int points = 8192; points <= (1 << 19); points *= 8) {  // refine until certified
     double m = inf;
-    for (int i = 0; i < points; ++i) m = std::min(m, std::norm(poly_at(c, pi * i / (points - 1))));
+    for (int i = 0; i < points; ++i) m = std::min(m, std::norm(polynomial_at(c, pi * i / (points - 1))));
     const double d = pi / (points - 1), lo = m - d * d / 8 * g2;
     if (lo > 0) return std::sqrt(lo);
   }
@@ -129,256 +118,355 @@ std::vector<std::complex<double>> FrequencyRegion::boundary(int points) const {
 }
 
 // ------------------------------------------------------------------ step 1
-UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
-                               const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
-                               const HinfPriors& priors, const UncertaintyOptions& opt,
-                               const Eigen::VectorXd* instrument) {
+namespace {
+
+void check_step1_inputs(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
+                        const Eigen::Ref<const Eigen::VectorXd>& instrument, int order,
+                        const Eigen::Ref<const Eigen::VectorXd>& grid, const HinfPriors& priors,
+                        const UncertaintyOptions& opt) {
   check_frequency_grid(grid);
   check_priors(priors);
-  const int N = static_cast<int>(u.size());
+  const Eigen::Index N = u.size();
   if (y.size() != N) throw InputError("data: u has " + num(N) + " samples but y has " + num(y.size()));
-  if (instrument && instrument->size() != N)
-    throw InputError("data: the instrument (reference) has " + num(instrument->size()) + " samples, u has " + num(N));
+  if (instrument.size() != 0 && instrument.size() != N)
+    throw InputError("data: the instrument (reference) has " + num(instrument.size()) + " samples, u has " + num(N));
   if (order < 1) throw InputError("basis order n = " + num(order) + " must be at least 1");
-  for (int t = 0; t < N; ++t)
+  for (Eigen::Index t = 0; t < N; ++t)
     if (!std::isfinite(u[t]) || !std::isfinite(y[t])) throw InputError("data: sample " + num(t + 1) + " is not finite");
   if (opt.noise == NoiseModel::stochastic && !(opt.alpha > 0 && opt.alpha < 1))
     throw InputError("alpha = " + num(opt.alpha) + " must satisfy 0 < alpha < 1");
   if (opt.noise == NoiseModel::bounded && !(opt.v_bar >= 0 && std::isfinite(opt.v_bar)))
     throw InputError("v_bar = " + num(opt.v_bar) + " must be >= 0");
+}
 
-  // Initial-condition envelope |h0(s)| <= M_ic rho_ic^s.
-  double rho_ic = priors.rho_ic > 0 ? priors.rho_ic : priors.rho;
-  double M_ic = priors.M_ic > 0 ? priors.M_ic : priors.M / priors.rho;
+// Impulse-response envelope |h0(s)| <= M rho^s of the initial-condition term.
+struct IcEnvelope {
+  double M = 0, rho = 0;
+};
+
+IcEnvelope ic_envelope(const OrthonormalBasis& basis, const HinfPriors& priors) {
   if (basis.kind() != BasisKind::fir && priors.u_bar > 0 && (priors.rho_ic <= 0 || priors.M_ic <= 0))
     throw InputError("priors M_ic and rho_ic (impulse-response envelope for the initial conditions) must be given "
                      "for the " + std::string(to_string(basis.kind())) + " basis when u_bar > 0");
-  auto eic = [&](int t) {  // bound on |sum_{s>=t} h0(s) u(t-s)|, t = 1-based time
-    return priors.u_bar * M_ic * std::pow(rho_ic, t) / (1 - rho_ic);
-  };
+  return {priors.M_ic > 0 ? priors.M_ic : priors.M / priors.rho, priors.rho_ic > 0 ? priors.rho_ic : priors.rho};
+}
 
-  UncertaintySet S;
-  const int nw = static_cast<int>(grid.size());
-  S.frequencies = grid;
-  int t0 = opt.first_sample;
-  if (t0 < 0) t0 = priors.u_bar > 0 ? std::min(N / 4, static_cast<int>(std::ceil(std::log(1e-3) / std::log(rho_ic)))) : 0;
-  const int R = N - t0;
-  if (R < 2 * order + 10)
-    throw InputError("data: " + num(R) + " usable samples (after skipping " + num(t0) + ") are too few for " +
+// sup|T'| for the tail T = sum_{k>=n} g0(k) F_k: sum_{k>=n} M rho^k (D0 + floor(k/m) H0 L'),
+// floor(k/m) <= k/m, in closed form.
+double tail_slope(const OrthonormalBasis& basis, const HinfPriors& priors, int order) {
+  const double r = priors.rho, rn = priors.M * std::pow(r, order);
+  return rn * (basis.front_derivative_bound() / (1 - r) +
+               basis.hinf_bound() * basis.allpass_derivative_bound() / basis.block() *
+                   (order / (1 - r) + r / ((1 - r) * (1 - r))));
+}
+
+// The regression of step 1 on rows t0 .. N-1: y = Phi theta0 + Xt g0_tail + (remainder) + ic + v.
+struct Regression {
+  int n = 0, K = 0, t0 = 0, R = 0;
+  Eigen::MatrixXd Phi, Xt, Z, Smat;  // model part, evaluated tail, instruments (or Phi), Z^T Phi
+  Eigen::VectorXd yr;
+  Eigen::VectorXd tailcoef;  // M rho^k, k = n .. n+K-1
+  double rem = 0;            // sum_{k>=n+K} M rho^k
+  Eigen::VectorXd ic;        // bound on the initial-condition term of each row
+};
+
+Regression build_regression(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
+                            const Eigen::Ref<const Eigen::VectorXd>& instrument, const OrthonormalBasis& basis,
+                            int order, const HinfPriors& priors, const IcEnvelope& env,
+                            const UncertaintyOptions& opt) {
+  const int N = static_cast<int>(u.size());
+  Regression g;
+  g.n = order;
+  g.t0 = opt.first_sample;
+  if (g.t0 < 0)
+    g.t0 = priors.u_bar > 0 ? std::min(N / 4, static_cast<int>(std::ceil(std::log(1e-3) / std::log(env.rho)))) : 0;
+  g.R = N - g.t0;
+  if (g.R < 2 * order + 10)
+    throw InputError("data: " + num(g.R) + " usable samples (after skipping " + num(g.t0) + ") are too few for " +
                      num(order) + " basis functions");
-  int K = opt.tail_terms;
-  if (K < 0) {
+  g.K = opt.tail_terms;
+  if (g.K < 0) {
     const double need = std::log(1e-9 * (1 - priors.rho)) / std::log(priors.rho);
-    K = std::clamp(static_cast<int>(std::ceil(need)) - order, 0, 400);
+    g.K = std::clamp(static_cast<int>(std::ceil(need)) - order, 0, 400);
   }
-  S.first_sample = t0;
-  S.tail_terms = K;
-  S.rows = R;
-  S.beta1 = basis.beta1(priors.M, priors.rho);
-  S.basis = basis;
-  {  // sup|T'| <= sum_{k>=n} M rho^k (D0 + floor(k/m) H0 L'), floor(k/m) <= k/m, closed form.
-    const double r = priors.rho, rn = priors.M * std::pow(r, order);
-    S.tail_beta = rn * (basis.front_derivative_bound() / (1 - r) +
-                        basis.hinf_bound() * basis.allpass_derivative_bound() / basis.block() *
-                            (order / (1 - r) + r / ((1 - r) * (1 - r))));
-  }
-
-  const int n = order;
+  const int n = g.n, K = g.K, t0 = g.t0, R = g.R;
   const Eigen::MatrixXd X = basis.responses(u, n + K);
-  const Eigen::MatrixXd Phi = X.block(t0, 0, R, n);
-  const Eigen::MatrixXd Xt = X.block(t0, n, R, K);
-  const Eigen::VectorXd yr = y.segment(t0, R);
-  const Eigen::MatrixXd Z = instrument ? Eigen::MatrixXd(basis.responses(*instrument, n).block(t0, 0, R, n)) : Phi;
-  const Eigen::MatrixXd Smat = Z.transpose() * Phi;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Smat);
-  if (qr.rank() < n)
-    throw InputError("data: the input is not persistently exciting for " + num(n) + " basis functions (rank " +
-                     num(qr.rank()) + ")");
-  S.theta = qr.solve(Z.transpose() * yr);
+  g.Phi = X.block(t0, 0, R, n);
+  g.Xt = X.block(t0, n, R, K);
+  g.yr = y.segment(t0, R);
+  g.Z = instrument.size() ? Eigen::MatrixXd(basis.responses(instrument, n).block(t0, 0, R, n)) : g.Phi;
+  g.Smat = g.Z.transpose() * g.Phi;
+  g.rem = priors.M * std::pow(priors.rho, n + K) / (1 - priors.rho);
+  g.tailcoef.resize(K);
+  for (int k = 0; k < K; ++k) g.tailcoef[k] = priors.M * std::pow(priors.rho, n + k);
+  g.ic.resize(R);  // |sum_{s>=t} h0(s) u(t-s)| <= u_bar M_ic rho_ic^t / (1 - rho_ic), t 1-based
+  for (int i = 0; i < R; ++i) g.ic[i] = priors.u_bar * env.M * std::pow(env.rho, t0 + i + 1) / (1 - env.rho);
+  return g;
+}
 
-  // Frequency responses of the model part and of the evaluated tail.
-  Eigen::MatrixXd Gre(n, nw), Gim(n, nw);
-  Eigen::MatrixXcd Ft(K, nw);
-  S.estimate.resize(nw);
+// Re and Im of the model part's frequency responses (n x nw each) and the evaluated tail (K x nw).
+struct GridResponses {
+  Eigen::MatrixXcd model, tail;
+  Eigen::MatrixXd re, im;
+};
+
+GridResponses grid_responses(const OrthonormalBasis& basis, const Eigen::Ref<const Eigen::VectorXd>& grid, int n, int K) {
+  const int nw = static_cast<int>(grid.size());
+  GridResponses G{Eigen::MatrixXcd(n, nw), Eigen::MatrixXcd(K, nw), Eigen::MatrixXd(), Eigen::MatrixXd()};
   for (int j = 0; j < nw; ++j) {
     const Eigen::VectorXcd F = basis.frequency_responses(grid[j], n + K);
-    Gre.col(j) = F.head(n).real();
-    Gim.col(j) = F.head(n).imag();
-    Ft.col(j) = F.tail(K);
-    S.estimate[j] = F.head(n).transpose() * S.theta.cast<std::complex<double>>();
+    G.model.col(j) = F.head(n);
+    G.tail.col(j) = F.tail(K);
   }
-  const double H0 = basis.hinf_bound();
-  const double rem = priors.M * std::pow(priors.rho, n + K) / (1 - priors.rho);  // sum_{k>=n+K} M rho^k
-  Eigen::VectorXd tailcoef(K);
-  for (int k = 0; k < K; ++k) tailcoef[k] = priors.M * std::pow(priors.rho, n + k);
-  S.tail_coefficients = tailcoef;
-  S.tail_remainder = rem * H0;
-  Eigen::VectorXd ic(R);
-  for (int i = 0; i < R; ++i) ic[i] = eic(t0 + i + 1);
-  S.terms.resize(nw);
-  S.regions.resize(nw);
-  for (int j = 0; j < nw; ++j) {  // f4: the tail itself, sum_k M rho^k |Re/Im F_k|
-    double re = rem * H0, im = rem * H0;
-    for (int k = 0; k < K; ++k) {
-      re += tailcoef[k] * std::abs(Ft(k, j).real());
-      im += tailcoef[k] * std::abs(Ft(k, j).imag());
+  G.re = G.model.real();
+  G.im = G.model.imag();
+  return G;
+}
+
+// f4, the tail itself: sum_k M rho^k |Re/Im F_k| plus the remainder beyond the evaluated terms.
+void set_tail_terms(UncertaintySet& S, const Regression& g, const GridResponses& G) {
+  const double rem = S.tail_remainder;
+  for (Eigen::Index j = 0; j < G.tail.cols(); ++j) {
+    double re = rem, im = rem;
+    for (int k = 0; k < g.K; ++k) {
+      re += g.tailcoef[k] * std::abs(G.tail(k, j).real());
+      im += g.tailcoef[k] * std::abs(G.tail(k, j).imag());
     }
     S.terms[j].tail_re = re;
     S.terms[j].tail_im = im;
   }
+}
 
-  if (opt.noise == NoiseModel::bounded) {
-    // Strips |y(t) - phi(t)^T theta| <= v_bar + e_ic(t) + e_tail(t); |x_k(t)| <= ||u_{1..t}||_2.
-    Eigen::VectorXd delta(R);
-    double usq = 0;
-    for (int t = 0; t < t0; ++t) usq += u[t] * u[t];
-    for (int i = 0; i < R; ++i) {
-      usq += u[t0 + i] * u[t0 + i];
-      delta[i] = opt.v_bar + ic[i] + tailcoef.dot(Xt.row(i).cwiseAbs().transpose()) + rem * std::sqrt(usq);
-    }
-    const auto fps = FeasibleParameterSet::from_data(Phi, yr, delta);
-    // Extremes of Re and Im Gamma(w_j)^T theta over the FPS: 4 directions per frequency, all from
-    // one working-set LP (row generation) with safe bounds, as for the PUIs. Ordered as four
-    // sweeps along the grid (max Re, min Re, max Im, min Im): neighbouring frequencies have
-    // nearby optima, so each LP starts close to its optimal basis.
-    std::vector<Eigen::VectorXd> dirs;
-    dirs.reserve(static_cast<std::size_t>(4 * nw));
-    for (const Eigen::MatrixXd* G : {&Gre, &Gim})
-      for (double sign : {1.0, -1.0})
-        for (int j = 0; j < nw; ++j) dirs.push_back(sign * G->col(j));
-    const FpsSupport sup = support(fps, dirs);
-    S.lp_solves += sup.lp_solves;
-    if (sup.empty) {
-      S.empty = true;
-      S.falsification = sup.falsification.message();
-      return S;
-    }
-    for (int l = 0; l < n; ++l)
-      if (!std::isfinite(sup.box[l].lower()) || !std::isfinite(sup.box[l].upper()))
-        throw NumericalError("bounded noise: parameter " + num(l) + " is unbounded (input not exciting enough)");
-    // The PUI box X contains the FPS, hence theta0: centre and radius for b_data (rounded up).
-    S.theta_ref.resize(n);
-    S.theta_radius.resize(n);
-    for (int l = 0; l < n; ++l) {
-      const double lo = sup.box[l].lower(), hi = sup.box[l].upper(), c = 0.5 * (lo + hi);
-      S.theta_ref[l] = c;
-      S.theta_radius[l] = std::nextafter(std::max(hi - c, c - lo) * (1 + 1e-15), inf);
-    }
-    auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
-      const double v = sup.maxima[static_cast<std::size_t>(k)];
-      if (!std::isfinite(v)) throw NumericalError("bounded noise: could not certify an LP bound");
-      return v;
-    };
-    for (int j = 0; j < nw; ++j) {
-      const double re_hi = extreme(j), re_lo = -extreme(nw + j);
-      const double im_hi = extreme(2 * nw + j), im_lo = -extreme(3 * nw + j);
-      FrequencyRegion& P = S.regions[j];
-      P.shape = RegionShape::rectangle;
-      P.centre = {0.5 * (re_lo + re_hi), 0.5 * (im_lo + im_hi)};
-      // Half widths rounded up: the centre is a rounded midpoint.
-      P.half_re = std::nextafter(0.5 * (re_hi - re_lo) + std::abs(P.centre.real()) * 4e-16, inf) + S.terms[j].tail_re;
-      P.half_im = std::nextafter(0.5 * (im_hi - im_lo) + std::abs(P.centre.imag()) * 4e-16, inf) + S.terms[j].tail_im;
-    }
-    return S;
+// Bounded noise: strips |y(t) - phi(t)^T theta| <= v_bar + e_ic(t) + e_tail(t), with
+// |x_k(t)| <= ||u_{1..t}||_2 for the remainder of the tail.
+Eigen::VectorXd strip_widths(const Eigen::Ref<const Eigen::VectorXd>& u, const Regression& g, double v_bar) {
+  Eigen::VectorXd delta(g.R);
+  double usq = 0;
+  for (int t = 0; t < g.t0; ++t) usq += u[t] * u[t];
+  for (int i = 0; i < g.R; ++i) {
+    usq += u[g.t0 + i] * u[g.t0 + i];
+    delta[i] = v_bar + g.ic[i] + g.tailcoef.dot(g.Xt.row(i).cwiseAbs().transpose()) + g.rem * std::sqrt(usq);
   }
+  return delta;
+}
 
-  // Stochastic: sensitivity vectors c with Re/Im(Gbar - G0 model part) = c^T (tail + ic + v).
-  Eigen::MatrixXd G2(n, 2 * nw);
-  G2 << Gre, Gim;
-  const Eigen::MatrixXd Yc = Smat.transpose().colPivHouseholderQr().solve(G2);
-  const Eigen::MatrixXd C = Z * Yc;  // R x 2nw
-  const Eigen::MatrixXd XtC = Xt.transpose() * C;
-  const double unorm = u.norm();
+// The PUI box contains the FPS, hence theta0: its centre and radius (rounded up) for b_data.
+void set_coefficient_box(UncertaintySet& S, const FpsSupport& sup, int n) {
+  for (int l = 0; l < n; ++l)
+    if (!std::isfinite(sup.box[l].lower()) || !std::isfinite(sup.box[l].upper()))
+      throw NumericalError("bounded noise: parameter " + num(l) + " is unbounded (input not exciting enough)");
+  S.theta_ref.resize(n);
+  S.theta_radius.resize(n);
+  for (int l = 0; l < n; ++l) {
+    const double lo = sup.box[l].lower(), hi = sup.box[l].upper(), c = 0.5 * (lo + hi);
+    S.theta_ref[l] = c;
+    S.theta_radius[l] = std::nextafter(std::max(hi - c, c - lo) * (1 + 1e-15), inf);
+  }
+}
 
-  // Noise covariance from the residuals, Bartlett window, degrees-of-freedom correction.
-  const Eigen::VectorXd res = yr - Phi * S.theta;
-  const int L = opt.max_lag >= 0 ? opt.max_lag : std::min(100, R / 10);
-  Eigen::VectorXd Rv(L + 1);
-  for (int tau = 0; tau <= L; ++tau)
-    Rv[tau] = res.head(R - tau).dot(res.tail(R - tau)) / R * R / (R - n) * (1.0 - double(tau) / (L + 1));
-  S.noise_variance = Rv[0];
-  auto quad = [&](const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b) {
+// Bounded noise: each region is the rectangle of the extremes of Re and Im Gamma(w_j)^T theta
+// over the FPS (certified LP bounds), widened by the tail term f4.
+void bounded_regions(UncertaintySet& S, const Eigen::Ref<const Eigen::VectorXd>& u, const Regression& g,
+                     const GridResponses& G, double v_bar) {
+  const auto fps = FeasibleParameterSet::from_data(g.Phi, g.yr, strip_widths(u, g, v_bar));
+  // 4 directions per frequency, all from one working-set LP (row generation) with safe bounds, as
+  // for the PUIs. Ordered as four sweeps along the grid (max Re, min Re, max Im, min Im):
+  // neighbouring frequencies have nearby optima, so each LP starts close to its optimal basis.
+  const int nw = static_cast<int>(S.frequencies.size());
+  std::vector<Eigen::VectorXd> dirs;
+  dirs.reserve(static_cast<std::size_t>(4 * nw));
+  for (const Eigen::MatrixXd* M : {&G.re, &G.im})
+    for (double sign : {1.0, -1.0})
+      for (int j = 0; j < nw; ++j) dirs.push_back(sign * M->col(j));
+  const FpsSupport sup = support(fps, dirs);
+  S.lp_solves += sup.lp_solves;
+  if (sup.empty) {
+    S.empty = true;
+    S.falsification = sup.falsification.message();
+    return;
+  }
+  set_coefficient_box(S, sup, g.n);
+  auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
+    const double v = sup.maxima[static_cast<std::size_t>(k)];
+    if (!std::isfinite(v)) throw NumericalError("bounded noise: could not certify an LP bound");
+    return v;
+  };
+  for (int j = 0; j < nw; ++j) {
+    const double re_hi = extreme(j), re_lo = -extreme(nw + j);
+    const double im_hi = extreme(2 * nw + j), im_lo = -extreme(3 * nw + j);
+    FrequencyRegion& P = S.regions[j];
+    P.shape = RegionShape::rectangle;
+    P.centre = {0.5 * (re_lo + re_hi), 0.5 * (im_lo + im_hi)};
+    // Half widths rounded up: the centre is a rounded midpoint.
+    P.half_re = std::nextafter(0.5 * (re_hi - re_lo) + std::abs(P.centre.real()) * 4e-16, inf) + S.terms[j].tail_re;
+    P.half_im = std::nextafter(0.5 * (im_hi - im_lo) + std::abs(P.centre.imag()) * 4e-16, inf) + S.terms[j].tail_im;
+  }
+}
+
+// Noise covariance lags R_v(0..L) from the residuals: Bartlett window, degrees-of-freedom correction.
+struct NoiseCovariance {
+  Eigen::VectorXd Rv;
+  int L = 0, R = 0;
+  // a^T Sigma_v b.
+  double quad(const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b) const {
     double s = Rv[0] * a.dot(b);
     for (int tau = 1; tau <= L; ++tau)
       s += Rv[tau] * (a.head(R - tau).dot(b.tail(R - tau)) + b.head(R - tau).dot(a.tail(R - tau)));
     return s;
-  };
-  if (!(opt.coefficient_share > 0)) throw InputError("coefficient_share must be > 0");
-  const double share = opt.coefficient_share;
-  // Failure budget: regions (1 - alpha) / (1 + share), coefficient set the rest (simultaneous).
-  const double level = opt.simultaneous ? 1 - (1 - opt.alpha) / ((1 + share) * nw) : opt.alpha;
-  S.level = level;
-  {  // Coefficient set for b_data: theta_hat_k - theta0_k = c_k^T (tail + ic + v), c_k = Z S^-T e_k.
-     // Box: each c_k bounded like a frequency row, Bonferroni over k. Ellipsoid (used by b_data):
-     // the noise part c^T v is asymptotically N(0, P), P_kl = c_k^T Sigma_v c_l, inside
-     // {e^T P^-1 e <= chi2_n} at the same failure probability; the rest is worst case per k.
-    const double fail = opt.simultaneous ? share * (1 - opt.alpha) / (1 + share) : share * (1 - opt.alpha);
-    S.coefficient_level = std::max(0.0, 1 - fail);
-    const boost::math::normal normal01;
-    const double zt = boost::math::quantile(normal01, 1 - fail / (2 * n));
-    const Eigen::MatrixXd Ct = Z * Smat.transpose().colPivHouseholderQr().solve(Eigen::MatrixXd::Identity(n, n));
-    const Eigen::MatrixXd XtCt = Xt.transpose() * Ct;
-    // Sigma_v Ct by the windowed covariance (R L per column), then P = Ct^T Sigma_v Ct.
-    Eigen::MatrixXd SCt = Rv[0] * Ct;
-    for (int tau = 1; tau <= L; ++tau) {
-      SCt.bottomRows(R - tau) += Rv[tau] * Ct.topRows(R - tau);
-      SCt.topRows(R - tau) += Rv[tau] * Ct.bottomRows(R - tau);
-    }
-    S.theta_covariance = Ct.transpose() * SCt;
-    S.theta_covariance = 0.5 * (S.theta_covariance + S.theta_covariance.transpose()).eval();
-    S.theta_scale = std::sqrt(boost::math::quantile(boost::math::chi_squared(n), 1 - fail));
-    S.theta_ref = S.theta;
-    S.theta_radius.resize(n);
-    S.theta_offset.resize(n);
-    for (int k = 0; k < n; ++k) {
-      const auto c = Ct.col(k);
-      S.theta_offset[k] = tailcoef.dot(XtCt.col(k).cwiseAbs()) + rem * c.norm() * H0 * unorm + c.cwiseAbs().dot(ic);
-      S.theta_radius[k] = zt * std::sqrt(std::max(0.0, S.theta_covariance(k, k))) + S.theta_offset[k];
-    }
   }
+  // Sigma_v C, column by column (R L per column).
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& C) const {
+    Eigen::MatrixXd SC = Rv[0] * C;
+    for (int tau = 1; tau <= L; ++tau) {
+      SC.bottomRows(R - tau) += Rv[tau] * C.topRows(R - tau);
+      SC.topRows(R - tau) += Rv[tau] * C.bottomRows(R - tau);
+    }
+    return SC;
+  }
+};
+
+NoiseCovariance noise_covariance(const Eigen::VectorXd& res, int n, int max_lag) {
+  NoiseCovariance c;
+  c.R = static_cast<int>(res.size());
+  const int R = c.R;
+  c.L = max_lag >= 0 ? max_lag : std::min(100, R / 10);
+  c.Rv.resize(c.L + 1);
+  for (int tau = 0; tau <= c.L; ++tau)
+    c.Rv[tau] = res.head(R - tau).dot(res.tail(R - tau)) / R * R / (R - n) * (1.0 - double(tau) / (c.L + 1));
+  return c;
+}
+
+// Stochastic coefficient set for b_data: theta_hat_k - theta0_k = c_k^T (tail + ic + v),
+// c_k = Z S^-T e_k. Box: each c_k bounded like a frequency row, Bonferroni over k. Ellipsoid
+// (used by b_data): the noise part c^T v is asymptotically N(0, P), P_kl = c_k^T Sigma_v c_l,
+// inside {e^T P^-1 e <= chi2_n} at the same failure probability; the rest is worst case per k.
+void stochastic_coefficient_set(UncertaintySet& S, const Regression& g, const NoiseCovariance& cov, double fail,
+                                double unorm) {
+  const int n = g.n;
+  S.coefficient_level = std::max(0.0, 1 - fail);
+  const boost::math::normal normal01;
+  const double zt = boost::math::quantile(normal01, 1 - fail / (2 * n));
+  const Eigen::MatrixXd Ct = g.Z * g.Smat.transpose().colPivHouseholderQr().solve(Eigen::MatrixXd::Identity(n, n));
+  const Eigen::MatrixXd XtCt = g.Xt.transpose() * Ct;
+  S.theta_covariance = Ct.transpose() * cov.apply(Ct);
+  S.theta_covariance = 0.5 * (S.theta_covariance + S.theta_covariance.transpose()).eval();
+  S.theta_scale = std::sqrt(boost::math::quantile(boost::math::chi_squared(n), 1 - fail));
+  S.theta_ref = S.theta;
+  S.theta_radius.resize(n);
+  S.theta_offset.resize(n);
+  const double H0 = S.basis.hinf_bound();
+  for (int k = 0; k < n; ++k) {
+    const auto c = Ct.col(k);
+    S.theta_offset[k] = g.tailcoef.dot(XtCt.col(k).cwiseAbs()) + g.rem * c.norm() * H0 * unorm + c.cwiseAbs().dot(g.ic);
+    S.theta_radius[k] = zt * std::sqrt(std::max(0.0, S.theta_covariance(k, k))) + S.theta_offset[k];
+  }
+}
+
+// The noise ellipse chi2 [Pre Pri; Pri Pim] plus the box [+-dre] x [+-dim], the box itself inside
+// the ellipse with Q2 = 2 diag(dre^2, dim^2); Minkowski sum of two ellipses inside
+// (1+1/p) Q1 + (1+p) Q2.
+Eigen::Matrix2d ellipse_shape(double Pre, double Pim, double Pri, double chi2, double dre, double dim) {
+  Pri = std::clamp(Pri, -std::sqrt(Pre * Pim), std::sqrt(Pre * Pim));
+  Eigen::Matrix2d Q1;
+  Q1 << Pre, Pri, Pri, Pim;
+  Q1 *= chi2;
+  const Eigen::Matrix2d Q2 = Eigen::Vector2d(2 * dre * dre, 2 * dim * dim).asDiagonal();
+  Eigen::Matrix2d Q;
+  if (Q2.trace() == 0)
+    Q = Q1;
+  else if (Q1.trace() == 0)
+    Q = Q2;
+  else {
+    const double p = std::sqrt(Q1.trace() / Q2.trace());
+    Q = (1 + 1 / p) * Q1 + (1 + p) * Q2;
+  }
+  Q += 1e-15 * Q.trace() * Eigen::Matrix2d::Identity();  // keep it positive definite
+  return Q;
+}
+
+// Stochastic: sensitivity vectors c with Re/Im(Gbar - G0 model part) = c^T (tail + ic + v); the
+// noise part at level S.level per frequency, the other three terms of (11) worst case.
+void stochastic_regions(UncertaintySet& S, const Regression& g, const GridResponses& G, const NoiseCovariance& cov,
+                        RegionShape shape, double unorm) {
+  const int nw = static_cast<int>(S.frequencies.size());
+  Eigen::MatrixXd G2(g.n, 2 * nw);
+  G2 << G.re, G.im;
+  const Eigen::MatrixXd C = g.Z * g.Smat.transpose().colPivHouseholderQr().solve(G2);  // R x 2nw
+  const Eigen::MatrixXd XtC = g.Xt.transpose() * C;
+  const double H0 = S.basis.hinf_bound();
   const boost::math::normal normal;
-  const double zq = boost::math::quantile(normal, 1 - (1 - level) / 4);  // two-sided, Re and Im
-  const double chi2 = -2 * std::log(1 - level);                            // chi^2_2 quantile
+  const double zq = boost::math::quantile(normal, 1 - (1 - S.level) / 4);  // two-sided, Re and Im
+  const double chi2 = -2 * std::log(1 - S.level);                          // chi^2_2 quantile
   for (int j = 0; j < nw; ++j) {
     const auto cre = C.col(j), cim = C.col(nw + j);
-    const double Pre = std::max(0.0, quad(cre, cre)), Pim = std::max(0.0, quad(cim, cim));
-    double Pri = quad(cre, cim);
+    const double Pre = std::max(0.0, cov.quad(cre, cre)), Pim = std::max(0.0, cov.quad(cim, cim));
     ErrorTerms& T = S.terms[j];
-    const double sc = opt.shape == RegionShape::rectangle ? zq : std::sqrt(chi2);
+    const double sc = shape == RegionShape::rectangle ? zq : std::sqrt(chi2);
     T.noise_re = sc * std::sqrt(Pre);
     T.noise_im = sc * std::sqrt(Pim);
-    T.tail_est_re = tailcoef.dot(XtC.col(j).cwiseAbs()) + rem * cre.norm() * H0 * unorm;
-    T.tail_est_im = tailcoef.dot(XtC.col(nw + j).cwiseAbs()) + rem * cim.norm() * H0 * unorm;
-    T.ic_re = cre.cwiseAbs().dot(ic);
-    T.ic_im = cim.cwiseAbs().dot(ic);
+    T.tail_est_re = g.tailcoef.dot(XtC.col(j).cwiseAbs()) + g.rem * cre.norm() * H0 * unorm;
+    T.tail_est_im = g.tailcoef.dot(XtC.col(nw + j).cwiseAbs()) + g.rem * cim.norm() * H0 * unorm;
+    T.ic_re = cre.cwiseAbs().dot(g.ic);
+    T.ic_im = cim.cwiseAbs().dot(g.ic);
     const double dre = T.tail_est_re + T.ic_re + T.tail_re, dim = T.tail_est_im + T.ic_im + T.tail_im;
     FrequencyRegion& P = S.regions[j];
     P.centre = S.estimate[j];
-    P.shape = opt.shape;
-    if (opt.shape == RegionShape::rectangle) {
+    P.shape = shape;
+    if (shape == RegionShape::rectangle) {
       P.half_re = T.noise_re + dre;
       P.half_im = T.noise_im + dim;
     } else {
-      // Noise ellipse (chi2 P) plus the box [+-dre] x [+-dim], itself inside the ellipse with
-      // Q2 = 2 diag(dre^2, dim^2); Minkowski sum of two ellipses inside (1+1/p) Q1 + (1+p) Q2.
-      Pri = std::clamp(Pri, -std::sqrt(Pre * Pim), std::sqrt(Pre * Pim));
-      Eigen::Matrix2d Q1;
-      Q1 << Pre, Pri, Pri, Pim;
-      Q1 *= chi2;
-      Eigen::Matrix2d Q2 = Eigen::Vector2d(2 * dre * dre, 2 * dim * dim).asDiagonal();
-      if (Q2.trace() == 0)
-        P.Q = Q1;
-      else if (Q1.trace() == 0)
-        P.Q = Q2;
-      else {
-        const double p = std::sqrt(Q1.trace() / Q2.trace());
-        P.Q = (1 + 1 / p) * Q1 + (1 + p) * Q2;
-      }
-      P.Q += 1e-15 * P.Q.trace() * Eigen::Matrix2d::Identity();  // keep it positive definite
+      P.Q = ellipse_shape(Pre, Pim, cov.quad(cre, cim), chi2, dre, dim);
       P.half_re = std::sqrt(P.Q(0, 0));
       P.half_im = std::sqrt(P.Q(1, 1));
     }
   }
+}
+
+}  // namespace
+
+UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
+                               const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
+                               const HinfPriors& priors, const UncertaintyOptions& opt,
+                               const Eigen::Ref<const Eigen::VectorXd>& instrument) {
+  check_step1_inputs(u, y, instrument, order, grid, priors, opt);
+  const Regression g = build_regression(u, y, instrument, basis, order, priors, ic_envelope(basis, priors), opt);
+  const int n = g.n, nw = static_cast<int>(grid.size());
+  UncertaintySet S;
+  S.frequencies = grid;
+  S.first_sample = g.t0;
+  S.tail_terms = g.K;
+  S.rows = g.R;
+  S.beta1 = basis.beta1(priors.M, priors.rho);
+  S.basis = basis;
+  S.tail_beta = tail_slope(basis, priors, order);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(g.Smat);
+  if (qr.rank() < n)
+    throw InputError("data: the input is not persistently exciting for " + num(n) + " basis functions (rank " +
+                     num(qr.rank()) + ")");
+  S.theta = qr.solve(g.Z.transpose() * g.yr);
+
+  const GridResponses G = grid_responses(basis, grid, n, g.K);
+  S.estimate.resize(nw);
+  for (int j = 0; j < nw; ++j) S.estimate[j] = G.model.col(j).transpose() * S.theta.cast<std::complex<double>>();
+  S.tail_coefficients = g.tailcoef;
+  S.tail_remainder = g.rem * basis.hinf_bound();
+  S.terms.resize(nw);
+  S.regions.resize(nw);
+  set_tail_terms(S, g, G);
+  if (opt.noise == NoiseModel::bounded) {
+    bounded_regions(S, u, g, G, opt.v_bar);
+    return S;
+  }
+  if (!(opt.coefficient_share > 0)) throw InputError("coefficient_share must be > 0");
+  const NoiseCovariance cov = noise_covariance(g.yr - g.Phi * S.theta, n, opt.max_lag);
+  S.noise_variance = cov.Rv[0];
+  // Failure budget: regions (1 - alpha) / (1 + share), coefficient set the rest (simultaneous).
+  const double share = opt.coefficient_share;
+  S.level = opt.simultaneous ? 1 - (1 - opt.alpha) / ((1 + share) * nw) : opt.alpha;
+  const double fail = opt.simultaneous ? share * (1 - opt.alpha) / (1 + share) : share * (1 - opt.alpha);
+  stochastic_coefficient_set(S, g, cov, fail, u.norm());
+  stochastic_regions(S, g, G, cov, opt.shape, u.norm());
   return S;
 }
 
@@ -421,7 +509,7 @@ NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
       lp.set_variable_bounds(i - 1, -binom, binom);
     }
     for (int j = 0; j < nw; ++j) {
-      const double s = W1[j] / std::abs(poly_at(aprev, w[j]));
+      const double s = W1[j] / std::abs(polynomial_at(aprev, w[j]));
       for (int k = 0; k < K; ++k) {
         const std::complex<double> rot = std::polar(1.0, -2 * pi * k / K);
         Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
@@ -433,7 +521,7 @@ NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
     }
     for (int d = 0; d < nd && ng > 0; ++d) {  // Re(A / A_prev) >= 0.01 keeps the winding number
       const double wd = pi * d / (nd - 1);
-      const std::complex<double> ap = std::conj(poly_at(aprev, wd));
+      const std::complex<double> ap = std::conj(polynomial_at(aprev, wd));
       Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
       for (int i = 1; i <= ng; ++i) row[i - 1] = (std::polar(1.0, -i * wd) * ap).real();
       lp.add_row(row, 0.01 * std::norm(ap) - ap.real(), inf);
@@ -470,7 +558,7 @@ Eigen::VectorXd additive_error(const UncertaintySet& S, const TransferFunction& 
 }
 
 // ------------------------------------------------------------------ step 3
-std::complex<double> WeightFit::inverse(double w) const { return poly_at(h, w); }
+std::complex<double> WeightFit::inverse(double w) const { return polynomial_at(h, w); }
 
 WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen::Ref<const Eigen::VectorXd>& delta,
                      const WeightOptions& o) {
@@ -517,9 +605,9 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
   const int nc = 16384;
   for (int i = 0; i < nc; ++i) pmin = std::min(pmin, P(pi * i / (nc - 1)));
   const double spacing = pi / (nc - 1);  // |P''| <= sum k^2 |c_k|
-  if (!(pmin - spacing * spacing / 8 * weighted_l2(fit.trig) > 0))
+  if (!(pmin - spacing * spacing / 8 * polynomial_second_derivative_bound(fit.trig) > 0))
     throw NumericalError("weight: |W^-1|^2 is not certified positive (grid minimum " + num(pmin) +
-                         ", curvature bound " + num(weighted_l2(fit.trig)) + "); lower the weight degree");
+                         ", curvature bound " + num(polynomial_second_derivative_bound(fit.trig)) + "); lower the weight degree");
   // Spectral factor: z^m P(z) has roots in pairs (r, 1/conj r); keep those inside the circle.
   int mm = m;
   while (mm > 0 && std::abs(fit.trig[mm]) < 1e-13 * std::abs(fit.trig[0])) --mm;
@@ -545,15 +633,15 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
   for (int i = 0; i < 512; ++i) {
     const double w = pi * i / 511;
     num_ += P(w);
-    den += std::norm(poly_at(fit.h, w));
+    den += std::norm(polynomial_at(fit.h, w));
   }
   fit.h *= std::sqrt(num_ / den);
   double scale = 1;
-  for (int j = 0; j < nw; ++j) scale = std::max(scale, delta[j] / std::abs(poly_at(fit.h, grid[j])));
+  for (int j = 0; j < nw; ++j) scale = std::max(scale, delta[j] / std::abs(polynomial_at(fit.h, grid[j])));
   fit.h *= scale * (1 + 1e-12);
   fit.max_gap = 0;
   for (int j = 0; j < nw; ++j)
-    fit.max_gap = std::max(fit.max_gap, W1[j] * W1[j] * (std::norm(poly_at(fit.h, grid[j])) - delta[j] * delta[j]));
+    fit.max_gap = std::max(fit.max_gap, W1[j] * W1[j] * (std::norm(polynomial_at(fit.h, grid[j])) - delta[j] * delta[j]));
   return fit;
 }
 
@@ -580,7 +668,7 @@ LocalTf local_tf(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen
   LocalTf t;
   if (!(amin > 0)) return t;
   t.sup = b.cwiseAbs().sum() / amin;
-  t.der = weighted_l1(b) / amin + b.cwiseAbs().sum() * weighted_l1(a) / (amin * amin);
+  t.der = polynomial_derivative_bound(b) / amin + b.cwiseAbs().sum() * polynomial_derivative_bound(a) / (amin * amin);
   return t;
 }
 
@@ -622,7 +710,7 @@ double data_bound(const UncertaintySet& S, const TransferFunction& nominal, cons
   const Eigen::VectorXcd th = S.theta_ref.cast<std::complex<double>>();
   const auto& w = S.frequencies;
   const int nw = static_cast<int>(w.size()), sub = 64;
-  const double hder = weighted_l1(h);  // >= sup|h'|
+  const double hder = polynomial_derivative_bound(h);  // >= sup|h'|
   double b = 0;
   for (int j = 0; j < nw; ++j) {
     const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
@@ -662,7 +750,7 @@ double data_bound(const UncertaintySet& S, const TransferFunction& nominal, cons
       const std::complex<double> delta = (Gi - Gr) - (nominal(wi) - Gh);
       const double dist = S.regions[j].max_distance(Gh - delta) + eta * lipd + g + eta * lipg;
       // |W| on the piece: 1 / (|h(w_i)| - eta sup|h'|) where positive (local), else the global slope.
-      const double hi_abs = std::abs(poly_at(h, wi)), hlo = hi_abs - eta * hder;
+      const double hi_abs = std::abs(polynomial_at(h, wi)), hlo = hi_abs - eta * hder;
       const double Wi = std::min(1 / hi_abs + eta * Wder, hlo > 0 ? 1 / hlo : inf);
       b = std::max(b, Wi * dist);
     }
@@ -682,8 +770,8 @@ BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal
   const double hmin = poly_min_modulus(h), amin = poly_min_modulus(nominal.a);
   if (!(hmin > 0)) throw NumericalError("bound: |W^-1| is not certified away from zero");
   if (!(amin > 0)) throw NumericalError("bound: the nominal denominator is not certified away from zero");
-  const double Wmax = 1 / hmin, Wder = weighted_l1(h) / (hmin * hmin);
-  const double Gder = weighted_l1(nominal.b) / amin + nominal.b.cwiseAbs().sum() * weighted_l1(nominal.a) / (amin * amin);
+  const double Wmax = 1 / hmin, Wder = polynomial_derivative_bound(h) / (hmin * hmin);
+  const double Gder = polynomial_derivative_bound(nominal.b) / amin + nominal.b.cwiseAbs().sum() * polynomial_derivative_bound(nominal.a) / (amin * amin);
   const double s = S.beta1 + Gder;  // sup |d/dw (G - Ghat)|
   B.b_prior = 0;
   B.b_grid = 0;
@@ -692,7 +780,7 @@ BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal
     const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
     B.lambda[j] = std::max(w[j] - lo, hi - w[j]);
     const double delta = S.regions[j].max_distance(nominal(w[j]));
-    B.delta_u[j] = delta / std::abs(poly_at(h, w[j]));
+    B.delta_u[j] = delta / std::abs(polynomial_at(h, w[j]));
     // |d/dw W(G - Ghat)| <= |W'| |G - Ghat| + |W| |G' - Ghat'| in the cell of w_j.
     B.beta[j] = Wder * (delta + B.lambda[j] * s) + Wmax * s;
     B.b_prior = std::max(B.b_prior, B.delta_u[j] + B.lambda[j] * B.beta[j]);
@@ -702,11 +790,10 @@ BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal
   return B;
 }
 
-HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
-                           const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
-                           const HinfPriors& priors, const HinfBoundOptions& o, const Eigen::VectorXd* instrument) {
+HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure, const HinfBoundOptions& o) {
   HinfBoundResult r;
-  r.set = uncertainty_set(u, y, basis, order, grid, priors, o.uncertainty, instrument);
+  r.set = uncertainty_set(data.u, data.y, structure.basis, structure.order, structure.grid, structure.priors,
+                          o.uncertainty, data.r);
   if (r.set.empty) return r;
   r.nominal = fit_nominal(r.set, o.nominal);
   r.delta = additive_error(r.set, r.nominal.model);
@@ -714,7 +801,7 @@ HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eig
   // bound follows delta at every level rather than only near its peak.
   WeightOptions wo = o.weight;
   if (wo.weight.size() == 0) wo.weight = r.delta.cwiseMax(1e-12 * r.delta.maxCoeff()).cwiseInverse();
-  r.weight = fit_weight(grid, r.delta, wo);
+  r.weight = fit_weight(structure.grid, r.delta, wo);
   r.bound = error_bound(r.set, r.nominal.model, r.weight.h);
   r.unweighted = error_bound(r.set, r.nominal.model, Eigen::VectorXd::Ones(1));
   return r;
@@ -726,17 +813,12 @@ Eigen::VectorXd midpoint_grid(int points, double w_min, double w_max) {
   return grid;
 }
 
-HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure, const HinfBoundOptions& options) {
-  return hinf_bound(data.u, data.y, structure.basis, structure.order, structure.grid, structure.priors, options,
-                    data.r.size() ? &data.r : nullptr);
-}
-
 double weighted_error(const std::function<std::complex<double>(double)>& G, const TransferFunction& nominal,
                       const Eigen::VectorXd& h, int dense_points) {
   double e = 0;
   for (int i = 0; i < dense_points; ++i) {
     const double w = pi * i / (dense_points - 1);
-    e = std::max(e, std::abs(G(w) - nominal(w)) / std::abs(poly_at(h, w)));
+    e = std::max(e, std::abs(G(w) - nominal(w)) / std::abs(polynomial_at(h, w)));
   }
   return e;
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "sets/core/error.hpp"
+#include "numeric/verified_linear_algebra.hpp"
 
 namespace sets {
 namespace {
@@ -35,17 +36,6 @@ struct VerifiedGram {
   double inv_norm = 0;   // >= ||R^{-1}||_2
   double gamma_cols = 0; // gamma_n for products of length cols
 };
-
-double frobenius(const IntervalMatrix& M) {
-  RoundingScope upward;
-  I s(0.0);
-  for (Eigen::Index j = 0; j < M.cols(); ++j)
-    for (Eigen::Index i = 0; i < M.rows(); ++i) {
-      const double m = std::max(std::abs(M(i, j).lower()), std::abs(M(i, j).upper()));
-      s += I(m) * I(m);
-    }
-  return boost::numeric::sqrt(s).upper();
-}
 
 VerifiedGram verify_gram(const Eigen::MatrixXd& Z) {
   const Eigen::Index M = Z.rows(), c = Z.cols();
@@ -85,12 +75,12 @@ VerifiedGram verify_gram(const Eigen::MatrixXd& Z) {
       for (Eigen::Index j = i + 1; j < c; ++j) D(i, j) = D(j, i);
     mu = eta1.upper();
   }
-  const double e = frobenius(E);
+  const double e = detail::frobenius_upper(E);
   if (!(e < 1)) throw NumericalError("guaranteed set: the inverse Cholesky factor of Z^T Z cannot be verified");
-  const double xf = frobenius(to_interval(g.X));
+  const double xf = detail::frobenius_upper(to_interval(g.X));
   RoundingScope upward;
   const I lambda = I(xf) / (I(1.0) - I(e));  // >= ||L^{-1}||_2
-  const I mu_total = I(mu) + I(frobenius(D));  // >= ||R - L L^T||_2
+  const I mu_total = I(mu) + I(detail::frobenius_upper(D));  // >= ||R - L L^T||_2
   const I shrink = I(1.0) - mu_total * lambda * lambda;
   if (!(shrink.lower() > 0)) throw NumericalError("guaranteed set: Z^T Z is too ill-conditioned to verify");
   g.kappa_q = (I(1.0) / shrink).upper();

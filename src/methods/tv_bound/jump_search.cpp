@@ -31,6 +31,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <queue>
 #include <string>
 #include <vector>
@@ -309,7 +310,7 @@ class Search {
  public:
   Search(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& eps)
       : data_(data), o_(o), eps_(eps), N_(data.samples()), q_(data.parameters()),
-        F_(o.F.size() ? o.F : Eigen::VectorXd::Ones(q_)), lp_(data, o, eps, grid_positions()),
+        F_(o.F.size() ? o.F : Eigen::VectorXd::Ones(q_)), positions_(grid_positions()), lp_(data, o, eps, positions_),
         t0_(Clock::now()) {
     peak_cap_ = (F_.cwiseProduct(o.max_abs)).maxCoeff();
     gap_ = std::max(o.milp.relative_gap, 0.0);
@@ -317,8 +318,10 @@ class Search {
 
   TvBoundResult run() {
     offer_start();
+    if (std::isfinite(best_)) drop_jumps();  // a start with a removable jump: cheaper at once
     roots();
     while (!open_.empty() && !out_of_budget()) {
+      if (best_ < searched_) drop_jumps();  // a new incumbent: try to drop its jumps
       if (prunable(open_.top().bound)) break;
       report_progress();
       Node n = open_.top();
@@ -369,12 +372,57 @@ class Search {
     return {jumps, (pi * F_.asDiagonal()).cwiseAbs().maxCoeff()};
   }
 
+  // The jumps of pi as single-position spans; nullopt if one lies off the jump grid.
+  std::optional<std::vector<Span>> jump_spans(const Eigen::MatrixXd& pi) const {
+    std::vector<Span> out;
+    const int k0 = o_.initial_difference ? 0 : 1;
+    for (int k = k0; k < N_; ++k)
+      for (int i = 0; i < q_; ++i) {
+        const double d = pi(k, i) - (k > 0 ? pi(k - 1, i) : 0.0);
+        if (std::abs(d) <= o_.mu[i] * (1 + 1e-6) + 1e-9) continue;
+        const int p = position_of(k);
+        if (p < 0) return std::nullopt;
+        out.push_back({p, p + 1, i, d > 0 ? State::up : State::down});
+      }
+    return out;
+  }
+
+  int position_of(int k) const {
+    const auto it = std::lower_bound(positions_.begin(), positions_.end(), k);
+    return it != positions_.end() && *it == k ? static_cast<int>(it - positions_.begin()) : -1;
+  }
+
   void offer(const Eigen::MatrixXd& pi) {
     const auto [jumps, peak] = objective(pi);
-    if (jumps + peak < best_) {
+    if (jumps + peak < best_ && jump_spans(pi)) {  // a point with a jump off the grid is not a solution
       best_ = jumps + peak;
       best_pi_ = pi;
     }
+  }
+
+  // Local search on the incumbent's jumps (a dominance step: a pattern with one jump fewer is
+  // cheaper whenever it stays feasible): drop one jump at a time, keep the first drop whose exact
+  // pattern LP still keeps the noise bound, repeat. Each try is one warm-started LP.
+  void drop_jumps() {
+    const LpBasis saved = lp_.basis();
+    for (bool improved = true; improved && !out_of_budget();) {
+      improved = false;
+      const auto spans = jump_spans(best_pi_);
+      if (!spans || spans->size() > kMaxLocalJumps) break;
+      for (std::size_t d = 0; d < spans->size() && !improved && !out_of_budget(); ++d) {
+        std::vector<Span> rest;
+        for (std::size_t j = 0; j < spans->size(); ++j)
+          if (j != d) rest.push_back((*spans)[j]);
+        const int jumps = static_cast<int>(rest.size());
+        if (jumps >= prune_level()) continue;
+        const double before = best_;
+        const PatternLp::Solution s = lp_.solve(rest, std::min(peak_cap_, best_ - jumps), prune_level() - jumps);
+        if (s.feasible) offer(s.pi);
+        improved = best_ < before;
+      }
+    }
+    lp_.restore(saved);
+    searched_ = best_;
   }
 
   // The warm start, if it keeps the noise bound and the box.
@@ -561,10 +609,14 @@ class Search {
   Eigen::VectorXd eps_;
   int N_, q_;
   Eigen::VectorXd F_;
+  std::vector<int> positions_;  // the samples where a jump may occur (the jump grid)
   PatternLp lp_;
   Clock::time_point t0_;
   double peak_cap_ = inf, gap_ = 0;
   double best_ = inf, unexplored_ = inf, pruned_ = inf, next_report_ = 0;
+  double searched_ = inf;  // the incumbent value drop_jumps last started from
+  // The local search costs one LP per jump and round: only for incumbents with few jumps.
+  static constexpr std::size_t kMaxLocalJumps = 24;
   Eigen::MatrixXd best_pi_;
   std::priority_queue<Node, std::vector<Node>, Worse> open_;
   long ids_ = 0;

@@ -303,7 +303,8 @@ RC_GTEST_PROP(HinfWorstCase, TrueSystemIsInsideTheBoundedNoiseSet, ()) {
   opt.weight.degree = 6;
   opt.nominal.iterations = 4;  // keeps the property fast; the guarantee does not depend on it
   const Eigen::VectorXd grid = uniform_grid(16);
-  const HinfBoundResult R = hinf_bound(u.tail(N), y.tail(N), OrthonormalBasis::fir(), 8, grid, priors, opt);
+  const HinfBoundResult R = hinf_bound(HinfData{u.tail(N), y.tail(N), {}},
+                                       HinfStructure{OrthonormalBasis::fir(), 8, priors, grid}, opt);
   RC_ASSERT(!R.set.empty);
   for (int j = 0; j < grid.size(); ++j) RC_ASSERT(R.set.regions[j].contains(G0(grid[j])));
   const auto G = [&](double w) { return G0(w); };
@@ -366,7 +367,7 @@ TEST(HinfWorstCase, FalsifiedPriorsGiveAnEmptySet) {
   HinfBoundOptions o;
   o.uncertainty.noise = NoiseModel::bounded;
   o.uncertainty.v_bar = 0.01;
-  const HinfBoundResult R = hinf_bound(u, y, OrthonormalBasis::fir(), 6, uniform_grid(10), p, o);
+  const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), 6, p, uniform_grid(10)}, o);
   EXPECT_TRUE(R.set.empty);
   EXPECT_FALSE(R.set.falsification.empty());
 }
@@ -436,7 +437,7 @@ TEST(HinfStochastic, InstrumentalVariablesRemoveTheClosedLoopBias) {
   p.u_bar = 2;
   const Eigen::VectorXd grid = uniform_grid(8);
   const UncertaintySet ls = uncertainty_set(u, y, OrthonormalBasis::fir(), 12, grid, p);
-  const UncertaintySet iv = uncertainty_set(u, y, OrthonormalBasis::fir(), 12, grid, p, {}, &r);
+  const UncertaintySet iv = uncertainty_set(u, y, OrthonormalBasis::fir(), 12, grid, p, {}, r);
   double els = 0, eiv = 0;
   for (int j = 0; j < grid.size(); ++j) {
     els = std::max(els, std::abs(ls.estimate[j] - G0(grid[j])));
@@ -473,7 +474,8 @@ TEST(HinfDataBound, StochasticCoverageOfTheTrueSystem) {
     v[0] = e[0];
     for (int t = 1; t < 600; ++t) v[t] = 0.8 * v[t - 1] + e[t];
     const Eigen::VectorXd y = G0.simulate(u) + v;
-    const HinfBoundResult R = hinf_bound(u.tail(500), y.tail(500), OrthonormalBasis::fir(), 10, grid, p, o);
+    const HinfBoundResult R = hinf_bound(HinfData{u.tail(500), y.tail(500), {}},
+                                         HinfStructure{OrthonormalBasis::fir(), 10, p, grid}, o);
     const auto G = [&](double w) { return G0(w); };
     miss += weighted_error(G, R.nominal.model, R.weight.h, 4096) > R.bound.b_data;
     miss_unweighted += weighted_error(G, R.nominal.model, Eigen::VectorXd::Ones(1), 4096) > R.unweighted.b_data;
@@ -517,7 +519,7 @@ RC_GTEST_PROP(HinfDataBound, BoundHoldsForEverySystemConsistentWithTheData, ()) 
   o.nominal.iterations = 4;
   o.weight.degree = 4;
   const Eigen::VectorXd grid = uniform_grid(5);
-  const HinfBoundResult R = hinf_bound(u, y, OrthonormalBasis::fir(), n, grid, p, o);
+  const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), n, p, grid}, o);
   RC_ASSERT(!R.set.empty);
   const Eigen::VectorXd theta1 = theta0 + d;
   RC_PRE(theta1.cwiseAbs().maxCoeff() <= 1.0);  // theta1 within the prior |g(k)| <= rho^k? (checked below)

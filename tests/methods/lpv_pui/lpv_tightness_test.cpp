@@ -13,7 +13,7 @@
 #include <iostream>
 #include <random>
 
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 
 namespace {
 

@@ -391,6 +391,74 @@ TEST(TvBound, CoarserJumpGridIsARestriction) {
   EXPECT_THROW(sets::sparse_bound(data, o), sets::InputError);
 }
 
+TEST(TvBound, OffGridWarmStartIsNeverTheIncumbent) {
+  // Regression: with grid > 1 the jump search accepted a warm start with a jump off the grid as
+  // its incumbent, so it returned a point outside the quantized problem (and pruned with its
+  // value). The fine optimum below jumps at sample 7 (off the grid of 3) and is cheaper than any
+  // on-grid trajectory; given as the start, it must be rejected and the coarse optimum found.
+  const int N = 18;
+  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
+  pi.block(7, 1, N - 7, 1).setConstant(0.5);
+  const auto data = small_data(pi, 0.01, 41, 4);
+  const auto lin = sets::linf_bound(data);
+  sets::SparseBoundOptions o;
+  o.mu = Eigen::Vector3d::Constant(1e-3);
+  o.max_abs = Eigen::Vector3d::Constant(1.0);
+  o.epsilon = lin.epsilon;
+  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides
+  o.milp.node_limit = 50000;
+  const auto fine = sets::sparse_bound(data, o);
+  bool off_grid = false;
+  for (const auto& c : fine.changes) off_grid = off_grid || c.sample % 3 != 0;
+  ASSERT_TRUE(off_grid) << "the fixture must have an off-grid optimum for this test to mean anything";
+  o.grid = 3;
+  o.epsilon *= 1 + 1e-4;  // the start then keeps the noise bound with room to spare
+  const auto cold = sets::sparse_bound(data, o);
+  ASSERT_TRUE(cold.status == sets::MilpStatus::optimal);
+  ASSERT_GT(cold.objective, fine.objective + 1e-3) << "the grid must cost something here";
+  for (auto solver : {sets::SparseSolver::jump_search, sets::SparseSolver::glpk_big_m}) {
+    o.solver = solver;
+    o.start = fine.pi;
+    const auto warm = sets::sparse_bound(data, o);
+    ASSERT_TRUE(warm.status == sets::MilpStatus::optimal);
+    for (const auto& c : warm.changes) EXPECT_EQ(c.sample % 3, 0) << "jump at " << c.sample;
+    EXPECT_NEAR(warm.objective, cold.objective, 2e-4 * (1 + cold.objective));
+    EXPECT_LE(warm.best_bound, cold.objective + 2e-4 * (1 + cold.objective));
+  }
+}
+
+TEST(TvBound, JumpSearchDropsARemovableJumpOfTheStart) {
+  // The local search on an incumbent: a warm start that is the optimum plus a short pulse in pi1
+  // (two needless jumps) is improved by dropping jumps, one warm-started LP per try. With an LP
+  // budget of 3 (drop the pulse's first jump, its second, then fail to drop the step) the tree
+  // itself is never searched, so only the local search can remove the pulse.
+  const int N = 18;
+  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
+  pi.block(7, 1, N - 7, 1).setConstant(0.5);
+  const auto data = small_data(pi, 0.01, 41, 4);
+  sets::SparseBoundOptions o;
+  o.mu = Eigen::Vector3d::Constant(1e-3);
+  o.max_abs = Eigen::Vector3d::Constant(1.0);
+  o.epsilon = sets::linf_bound(data).epsilon;
+  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides
+  o.milp.node_limit = 50000;
+  const auto opt = sets::sparse_bound(data, o);
+  ASSERT_TRUE(opt.status == sets::MilpStatus::optimal);
+  Eigen::MatrixXd start = opt.pi;
+  start.block(3, 0, 2, 1).array() += 5e-3;  // jumps up at 3, down at 5
+  o.epsilon *= 1.2;                          // room for the pulse
+  ASSERT_TRUE(data.ball().contains(sets::stack_samples(data.y) - data.regression.upsilon -
+                                       data.regression.xi * sets::stack_samples(start),
+                                   o.epsilon))
+      << "the pulse must keep the noise bound for the start to be offered";
+  o.start = start;
+  o.milp.node_limit = 3;
+  const auto r = sets::sparse_bound(data, o);
+  EXPECT_LE(r.changes.size(), opt.changes.size());
+  for (const auto& c : r.changes) EXPECT_NE(c.parameter, 0) << "the pulse's jump at " << c.sample << " stayed";
+  EXPECT_LE(r.objective, opt.objective + 5e-3 + 1e-6);  // opt (feasible here) plus at most the pulse's peak
+}
+
 namespace {
 
 // Runs f, expects an exception of type E whose message contains `names`.

@@ -120,13 +120,13 @@ void check_frequency_grid(const Eigen::Ref<const Eigen::VectorXd>& grid);
 /// Checks the priors (0 < rho < 1, M > 0, u_bar >= 0, ...); throws InputError naming the field.
 void check_priors(const HinfPriors& priors);
 
-/// Step 1. u, y: data; r (optional, same length): reference for instrumental variables
-/// (closed loop); order: number of basis functions n.
+/// Step 1. u, y: data; instrument (empty, or of the same length): reference for instrumental
+/// variables (closed loop); order: number of basis functions n.
 UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u,
                                const Eigen::Ref<const Eigen::VectorXd>& y, const OrthonormalBasis& basis,
                                int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
                                const HinfPriors& priors, const UncertaintyOptions& options = {},
-                               const Eigen::VectorXd* instrument = nullptr);
+                               const Eigen::Ref<const Eigen::VectorXd>& instrument = Eigen::VectorXd());
 
 /// The former name of TransferFunction in this method (kept for source compatibility).
 using RationalModel = TransferFunction;
@@ -199,13 +199,6 @@ struct HinfBoundResult {
   BoundResult unweighted;  // W = 1: an additive H-infinity bound
 };
 
-/// All four steps. If the bounded-noise data falsify the priors, result.set.empty is true and
-/// the later steps are skipped.
-HinfBoundResult hinf_bound(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::VectorXd>& y,
-                           const OrthonormalBasis& basis, int order, const Eigen::Ref<const Eigen::VectorXd>& grid,
-                           const HinfPriors& priors, const HinfBoundOptions& options = {},
-                           const Eigen::VectorXd* instrument = nullptr);
-
 /// Time-domain data of one experiment: u and y; r (empty, or of the same length) is a reference
 /// signal used as instrumental variables (closed-loop data).
 struct HinfData {
@@ -224,7 +217,8 @@ struct HinfStructure {
 /// `points` frequencies at the midpoints of equal cells of [w_min, w_max].
 Eigen::VectorXd midpoint_grid(int points, double w_min, double w_max);
 
-/// The method's entry point: all four steps on one data set (the same as the call above).
+/// The method's entry point: all four steps on one data set. If the bounded-noise data falsify
+/// the priors, result.set.empty is true and the later steps are skipped.
 HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure, const HinfBoundOptions& options = {});
 
 /// max over the dense grid of |W(e^iw) (G(e^iw) - Ghat(e^iw))|, W = 1/h.

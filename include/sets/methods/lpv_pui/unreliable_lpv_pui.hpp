@@ -3,7 +3,7 @@
 // measurement errors. A diagnostic for docs/reproduction/cerone.md (e.g. `scheduling` is eq. 25
 // read literally: min/max over eps only, w_{t-i} taken as y_{t-i}); lpv_pui() is the method.
 
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/methods/lpv_pui/lpv_pui.hpp"
 
 namespace sets {
 

@@ -1,4 +1,4 @@
-#include "sets/methods/lpv_pui/lpv_model.hpp"
+#include "sets/models/lpv_model.hpp"
 
 #include <boost/algorithm/string/classification.hpp>
 #include <boost/algorithm/string/trim.hpp>
@@ -398,16 +398,6 @@ LpvRegression lpv_regression(const LpvModelStructure& model, const LpvMeasuremen
     }
   }
   return reg;
-}
-
-LpvPuiResult lpv_pui(const LpvModelStructure& model, const LpvMeasurements& data, const PuiOptions& options,
-                     const RangeOptions& range) {
-  LpvPuiResult r;
-  r.regression = lpv_regression(model, data, range);
-  const FeasibleParameterSet fps = FeasibleParameterSet::from_interval_data(r.regression.Phi, r.regression.Y);
-  r.pui = pui(fps, options);
-  for (int row : r.pui.falsification.samples) r.falsifying_times.push_back(r.regression.time[static_cast<std::size_t>(row)]);
-  return r;
 }
 
 Eigen::VectorXd simulate_lpv(const LpvModelStructure& model, const Eigen::Ref<const Eigen::VectorXd>& theta,

@@ -10,9 +10,9 @@
 // lambda_t (eq. 13). The regressor phi_t = [-w_{t-i} f_{i,k}(lambda_t) ..., u_{t-j} g_{j,h}(lambda_t) ...]
 // is only known to lie in a box: w_{t-i} in [y -+ Delta_eta] (eq. 20), f(lambda_t) in its tight range
 // over the lambda box (eqs. 21–24), and rho, gamma by interval products (eqs. 25–26; exact, since
-// the two factors vary independently). Those interval regressors go into a
-// FeasibleParameterSet, whose orthant rows use the exact interval ends: that is eqs. 27–39 (centre
-// +- radius, sign-selected), and `pui()` gives the PUIs (eq. 40) and the central estimate (41–42).
+// the two factors vary independently). This header is the model: its structure, the interval
+// regression it defines and a simulator; the method (PUIs, eqs. 27–42) is in
+// sets/methods/lpv_pui/lpv_pui.hpp.
 
 #include <Eigen/Core>
 
@@ -20,7 +20,6 @@
 #include <string>
 #include <vector>
 
-#include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 #include "sets/numeric/tight_range.hpp"
 
@@ -116,16 +115,6 @@ struct LpvRegression {
 /// negative bounds, size mismatches, or fewer regressions than parameters.
 LpvRegression lpv_regression(const LpvModelStructure& model, const LpvMeasurements& data,
                              const RangeOptions& range = {});
-
-struct LpvPuiResult {
-  LpvRegression regression;
-  PuiResult pui;
-  std::vector<int> falsifying_times;  // sample indices t of pui.falsification (when empty)
-};
-
-/// PUIs and central estimate of the LPV model's (outer-approximated) feasible parameter set.
-LpvPuiResult lpv_pui(const LpvModelStructure& model, const LpvMeasurements& data, const PuiOptions& options = {},
-                     const RangeOptions& range = {});
 
 /// Noise-free simulation of eq. (2) from zero initial conditions: w (length T) for inputs u
 /// (length T) and scheduling lambda (T x alpha).
