@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/gnuplot.hpp"
+#include "sets/core/error.hpp"
 #include "sets/examples/hakvoort.hpp"
 
 namespace fs = std::filesystem;
@@ -28,7 +29,7 @@ struct Rates {
   double b = 0, grid = 0, data = 0, regions = 0;
 };
 Rates rates(const Settings& s, const Runs& r) {
-  const int valid = s.runs - r.falsified;
+  const int valid = s.runs - r.falsified - static_cast<int>(r.failed.size());
   if (!s.builtin || !valid) return {};
   return {double(r.fail_b) / valid, double(r.fail_grid) / valid, double(r.fail_data) / valid,
           double(r.fail_regions) / valid};
@@ -43,6 +44,7 @@ std::vector<double> std_vector(const Eigen::VectorXd& v) { return {v.data(), v.d
 Runs run_all(const Settings& s, const sets::HinfData& data, const sets::TransferFunction& G0) {
   std::mt19937_64 rng(s.seed);
   Runs out;
+  bool have_first = false;
   sets::HinfData d = data;
   for (int run = 0; run < s.runs; ++run) {
     if (s.builtin) {
@@ -51,11 +53,20 @@ Runs run_all(const Settings& s, const sets::HinfData& data, const sets::Transfer
       d.y = sim.y;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    sets::HinfBoundResult R = sets::hinf_bound(d, s.structure, s.options);
+    sets::HinfBoundResult R;
+    try {
+      R = sets::hinf_bound(d, s.structure, s.options);
+    } catch (const sets::NumericalError& e) {
+      if (!s.builtin) throw;  // one data set: the failure is the answer (exit code 3)
+      out.failed.push_back({run + 1, e.what()});
+      continue;
+    }
     out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const bool first = !have_first;
+    have_first = true;
+    if (first) out.first = R;
     if (R.set.empty) {
       ++out.falsified;
-      if (run == 0) out.first = R;
       continue;
     }
     if (s.builtin) {
@@ -80,8 +91,10 @@ Runs run_all(const Settings& s, const sets::HinfData& data, const sets::Transfer
     double rad = 0;
     for (const auto& P : R.set.regions) rad += std::hypot(P.half_re, P.half_im) / R.set.regions.size();
     out.radii.push_back(rad);
-    if (run == 0) out.first = R;
   }
+  if (!have_first)
+    throw sets::NumericalError("every one of the " + std::to_string(s.runs) + " runs failed; run 1: " +
+                               out.failed.front().reason);
   return out;
 }
 
@@ -132,14 +145,18 @@ void print_results(const Settings& s, const Runs& r, double cpu_per_run) {
             << " s CPU (CPU includes simulating the data and the Monte Carlo check)\n";
   if (!s.builtin) return;
   const Rates fr = rates(s, r);
-  const int valid = s.runs - r.falsified;
+  const int valid = s.runs - r.falsified - static_cast<int>(r.failed.size());
   const double mc = std::sqrt(std::max(1 - alpha, 1e-12) * alpha / std::max(valid, 1));
-  std::cout << "\nMonte Carlo, " << s.runs << " runs (" << r.falsified << " falsified):\n"
+  std::cout << "\nMonte Carlo, " << s.runs << " runs (" << r.falsified << " falsified, " << r.failed.size()
+            << " failed numerically; rates over the other " << valid << "):\n"
             << "  G0 outside G(Ghat, W, b)      (dense grid, 4096 points): " << r.fail_b << " -> failure rate " << fr.b << "\n"
             << "  G0 outside G(Ghat, W, b_data) (dense grid, 4096 points): " << r.fail_data << " -> failure rate " << fr.data << "\n"
             << "  G0 outside G(Ghat, W, b_prior)(dense grid, 4096 points): " << r.fail_prior << "\n"
             << "  G0 outside G(Ghat, W, b_grid) (dense grid, 4096 points): " << r.fail_grid << " -> failure rate " << fr.grid << "\n"
             << "  some G0(w_j) outside its region P(w_j):                  " << r.fail_regions << " -> " << fr.regions << "\n";
+  for (std::size_t k = 0; k < r.failed.size() && k < 10; ++k)
+    std::cout << "  failed run " << r.failed[k].run << ": " << r.failed[k].reason << "\n";
+  if (r.failed.size() > 10) std::cout << "  (" << r.failed.size() - 10 << " more failed runs in the JSON)\n";
   if (!s.bounded) {
     std::cout << "  allowed: 1 - alpha = " << 1 - alpha << " (Monte Carlo std error at that rate " << mc << ")\n";
     std::cout << "  (b and b_data share the level; the coefficient set takes " << share << " / (1 + " << share
@@ -175,6 +192,10 @@ sets::app::Json results_json(const Settings& s, const Runs& r, int samples, doub
   j["failure_rate_grid"] = fr.grid;
   j["region_miss_rate"] = fr.regions;
   j["falsified_runs"] = r.falsified;
+  j["failed_runs"] = r.failed.size();
+  std::vector<sets::app::Json> failures;
+  for (const auto& f : r.failed) failures.push_back({{"run", f.run}, {"reason", f.reason}});
+  j["failures"] = failures;
   j["basis"] = s.basis_name;
   j["order"] = s.structure.order;
   j["N"] = samples;

@@ -18,15 +18,23 @@ struct Settings {
   unsigned seed = 1;
 };
 
+/// A Monte Carlo run in which the method stopped with a numerical failure (recorded, not fatal).
+struct FailedRun {
+  int run = 0;  // 1-based
+  std::string reason;
+};
+
 struct Runs {
-  sets::HinfBoundResult first;  // the first run (or the first falsified one)
+  sets::HinfBoundResult first;  // the first run that did not fail (or the first falsified one)
   int fail_b = 0, fail_grid = 0, fail_data = 0, fail_prior = 0, fail_regions = 0, falsified = 0;
+  std::vector<FailedRun> failed;  // built-in Monte Carlo only; one data set rethrows (exit code 3)
   double seconds = 0;           // wall time in sets::hinf_bound, all runs
   std::vector<double> bs, bgrids, bdatas, bpriors, ubs, ubgrids, ubdatas, ubpriors, radii;
 };
 
 /// Built-in: `settings.runs` data sets of G0 from one generator; otherwise `data` once. Counts
-/// where G0 falls outside the bounds (built-in only).
+/// where G0 falls outside the bounds (built-in only). A built-in run that fails numerically is
+/// recorded with its reason and the campaign goes on; throws NumericalError if every run failed.
 Runs run_all(const Settings& settings, const sets::HinfData& data, const sets::TransferFunction& G0);
 
 /// The per-frequency table (unless quiet), the bounds, means, timing and Monte Carlo rates.

@@ -558,6 +558,51 @@ Eigen::VectorXd additive_error(const UncertaintySet& S, const TransferFunction& 
 }
 
 // ------------------------------------------------------------------ step 3
+namespace {
+double trig_at(const Eigen::VectorXd& c, double w) {  // c0 + sum_k c_k cos(k w)
+  double s = 0;
+  for (Eigen::Index k = 0; k < c.size(); ++k) s += c[k] * std::cos(k * w);
+  return s;
+}
+
+// Certified lower bound on min over [0, pi] of the cosine polynomial c: the minimum over a grid of
+// spacing d less d^2/8 sup|c''| (sup|c''| <= sum k^2 |c_k|), the grid refined until it is positive
+// or 2^20 points; returns that bound (<= 0: not certified).
+double certified_trig_minimum(const Eigen::VectorXd& c) {
+  const double curvature = polynomial_second_derivative_bound(c);
+  double lower = -inf;
+  for (int points = 16384; points <= (1 << 20); points *= 4) {
+    double m = inf;
+    for (int i = 0; i < points; ++i) m = std::min(m, trig_at(c, pi * i / (points - 1)));
+    const double d = pi / (points - 1);
+    lower = m - d * d / 8 * curvature;
+    if (lower > 0) break;
+  }
+  return lower;
+}
+
+// Solves the LP for |W^-1|^2 and, where its solution dips below `floor` between the LP's rows,
+// adds the local minima as rows and solves again (cutting planes; at most 8 rounds).
+Eigen::VectorXd floored_trig_solution(LinearProgram& lp, const std::function<Eigen::VectorXd(double)>& cosrow, int m,
+                                      double floor) {
+  const int nc = 16384;
+  for (int round = 0;; ++round) {
+    const LpSolution sol = lp.solve();
+    if (sol.status != LpStatus::optimal) throw NumericalError("weight: the LP for |W^-1|^2 has no optimum");
+    const Eigen::VectorXd c = sol.x.head(m + 1);
+    Eigen::VectorXd v(nc);
+    for (int i = 0; i < nc; ++i) v[i] = trig_at(c, pi * i / (nc - 1));
+    int cuts = 0;
+    for (int i = 0; i < nc; ++i)
+      if (v[i] < floor && (i == 0 || v[i] <= v[i - 1]) && (i == nc - 1 || v[i] <= v[i + 1])) {
+        lp.add_row(cosrow(pi * i / (nc - 1)), floor, inf);
+        ++cuts;
+      }
+    if (cuts == 0 || round == 8) return c;
+  }
+}
+}  // namespace
+
 std::complex<double> WeightFit::inverse(double w) const { return polynomial_at(h, w); }
 
 WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen::Ref<const Eigen::VectorXd>& delta,
@@ -574,7 +619,7 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
   const double dmax = delta.maxCoeff();
   if (!(dmax > 0)) throw InputError("weight: every delta is zero");
   LinearProgram lp(nv);
-  auto cosrow = [&](double w) {
+  const std::function<Eigen::VectorXd(double)> cosrow = [&](double w) {
     Eigen::VectorXd r = Eigen::VectorXd::Zero(nv);
     for (int k = 0; k <= m; ++k) r[k] = std::cos(k * w);
     return r;
@@ -591,23 +636,12 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
   const double floor = 0.25 * delta.minCoeff() * delta.minCoeff() + 1e-8 * dmax * dmax;
   for (int d = 0; d < nd; ++d) lp.add_row(cosrow(pi * d / (nd - 1)), floor, inf);
   lp.set_objective_coordinate(nv - 1, Sense::minimize);
-  const LpSolution sol = lp.solve();
-  if (sol.status != LpStatus::optimal) throw NumericalError("weight: the LP for |W^-1|^2 has no optimum");
   WeightFit fit;
-  fit.trig = sol.x.head(m + 1);
-  // Positivity on all of [0, pi]: grid minimum less spacing^2/8 sup|P''|.
-  auto P = [&](double w) {
-    double s = 0;
-    for (int k = 0; k <= m; ++k) s += fit.trig[k] * std::cos(k * w);
-    return s;
-  };
-  double pmin = inf;
-  const int nc = 16384;
-  for (int i = 0; i < nc; ++i) pmin = std::min(pmin, P(pi * i / (nc - 1)));
-  const double spacing = pi / (nc - 1);  // |P''| <= sum k^2 |c_k|
-  if (!(pmin - spacing * spacing / 8 * polynomial_second_derivative_bound(fit.trig) > 0))
-    throw NumericalError("weight: |W^-1|^2 is not certified positive (grid minimum " + num(pmin) +
-                         ", curvature bound " + num(polynomial_second_derivative_bound(fit.trig)) + "); lower the weight degree");
+  fit.trig = floored_trig_solution(lp, cosrow, m, floor);
+  const double pmin = certified_trig_minimum(fit.trig);
+  if (!(pmin > 0))
+    throw NumericalError("weight: |W^-1|^2 is not certified positive (curvature bound " +
+                         num(polynomial_second_derivative_bound(fit.trig)) + "); lower the weight degree");
   // Spectral factor: z^m P(z) has roots in pairs (r, 1/conj r); keep those inside the circle.
   int mm = m;
   while (mm > 0 && std::abs(fit.trig[mm]) < 1e-13 * std::abs(fit.trig[0])) --mm;
@@ -632,7 +666,7 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
   double num_ = 0, den = 0;
   for (int i = 0; i < 512; ++i) {
     const double w = pi * i / 511;
-    num_ += P(w);
+    num_ += trig_at(fit.trig, w);
     den += std::norm(polynomial_at(fit.h, w));
   }
   fit.h *= std::sqrt(num_ / den);
@@ -672,13 +706,141 @@ LocalTf local_tf(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen
   return t;
 }
 
-// b_data (docs/methods/hinf-bound.md, section 6): for w in cell_j,
-//   G0(w) - Ghat(w) = [G0(w_j) - Ghat(w_j)] + Delta(w) + r(w),
-//   Delta(w) = (Gamma(w) - Gamma(w_j))^T theta_ref - Ghat(w) + Ghat(w_j)   (known),
-//   |r(w)| <= g(w) = sum_{k<n} radius_k |F_k(w) - F_k(w_j)| + sum_{k>=n} M rho^k |F_k(w) - F_k(w_j)|,
-// so |G0 - Ghat| <= maxdist_{P(w_j)}(Ghat(w_j) - Delta(w)) + g(w). Each cell is cut into pieces;
-// on a piece of half width eta around w_i every term is bounded by its value at w_i plus eta times
-// a Lipschitz constant valid on that piece (from the distance of the poles to the piece's arc).
+// b_data (docs/methods/hinf-bound.md, section 6). For w in cell_j two bounds on |G0(w) - Ghat(w)|
+// hold on the event that the regions and the coefficient set hold:
+//  (a) from the region at w_j:  G0(w) - Ghat(w) = [G0(w_j) - Ghat(w_j)] + Delta(w) + r(w),
+//      Delta(w) = (Gamma(w) - Gamma(w_j))^T theta_ref - Ghat(w) + Ghat(w_j)   (known),
+//      |r(w)| <= g(w) = sum_{k<n} radius_k |F_k(w) - F_k(w_j)| + sum_{k>=n} M rho^k |F_k(w) - F_k(w_j)|,
+//      so |G0 - Ghat| <= maxdist_{P(w_j)}(Ghat(w_j) - Delta(w)) + g(w);
+//  (b) direct, from the coefficient set alone: |G0(w) - Ghat(w)| <= |Gamma(w)^T theta_ref - Ghat(w)|
+//      + sum_{k<n} radius_k |F_k(w)| + sum_{k>=n} M rho^k |F_k(w)| (+ the tail remainder).
+// Both are Lipschitz in w with constant <= L_Delta + L_g on a piece, so on a piece of half width
+// eta around w_i their minimum is bounded by its value at w_i plus eta (L_Delta + L_g), the local
+// constants from the distance of the poles to the piece's arc. The pieces are refined where they
+// set the maximum (section 6, "adaptive pieces").
+
+// What every piece of the band shares.
+struct BandContext {
+  const UncertaintySet& S;
+  const TransferFunction& nominal;
+  const Eigen::VectorXd& h;
+  double Wder = 0, Gder = 0, hder = 0;
+  int n = 0, K = 0, m = 1;
+  double D0 = 0, H0 = 0, L0 = 0;
+  std::vector<Eigen::VectorXcd> front_poles{};
+  Eigen::VectorXcd ap_poles{}, nom_poles{};
+  // Weights of |F_k(w) - F_k(w_j)| (and |F_k(w)|) in g and of the slopes. With the ellipsoid
+  // (stochastic), the first n weights are the worst-case offsets and the noise part is bounded
+  // in the direction itself: sup_{e^T P^-1 e <= s^2} |a^T e| = s sqrt(a^H P a).
+  bool ellipsoid = false;
+  Eigen::MatrixXd Pabs{};
+  Eigen::VectorXd wg{}, wd{};
+  Eigen::VectorXcd th{};
+};
+
+// The cell of grid point j: [lo, hi] and what its pieces share.
+struct Cell {
+  int j = 0;
+  double lo = 0, hi = 0;
+  Eigen::VectorXcd Fj;
+  std::complex<double> Gr, Gh;  // Gamma(w_j)^T theta_ref, Ghat(w_j)
+};
+
+struct Piece {
+  double bound = 0;  // >= |W (G0 - Ghat)| on the piece
+  double point = 0;  // the bound's value at the centre (its limit as the piece shrinks)
+  int cell = 0;
+  double centre = 0, eta = 0;
+  bool operator<(const Piece& o) const { return bound < o.bound; }
+};
+
+double ellipsoid_term(const BandContext& c, const Eigen::Ref<const Eigen::VectorXcd>& a) {
+  const Eigen::VectorXd are = a.real(), aim = a.imag();
+  const Eigen::MatrixXd& P = c.S.theta_covariance;
+  return c.S.theta_scale * std::sqrt(std::max(0.0, are.dot(P * are) + aim.dot(P * aim)));
+}
+
+// Local sup|F_k'| on the arc [lo, hi]: min(global, Dc + floor(k/m) Hc Lc), for k < n + K.
+Eigen::VectorXd local_slopes(const BandContext& c, double lo, double hi) {
+  const OrthonormalBasis& basis = c.S.basis;
+  double Hc = 0, Dc = 0, Lc = 0;
+  for (std::size_t f = 0; f < c.front_poles.size(); ++f) {
+    const LocalTf t = local_tf(basis.fronts()[f].b, basis.fronts()[f].a, c.front_poles[f], lo, hi);
+    Hc = std::max(Hc, t.sup);
+    Dc = std::max(Dc, t.der);
+  }
+  for (Eigen::Index q = 0; q < c.ap_poles.size(); ++q) {
+    const double d = arc_distance(c.ap_poles[q], lo, hi), r = std::abs(c.ap_poles[q]);
+    Lc += d > 0 ? (1 - r * r) / (d * d) : inf;
+  }
+  Eigen::VectorXd d(c.n + c.K);
+  for (int k = 0; k < c.n + c.K; ++k)
+    d[k] = std::min(c.D0 + double(k / c.m) * c.H0 * c.L0, Dc + double(k / c.m) * Hc * Lc);
+  return d;
+}
+
+Piece evaluate_piece(const BandContext& c, const Cell& cell, double wi, double eta) {
+  const UncertaintySet& S = c.S;
+  const int n = c.n;
+  const double plo = wi - eta, phi = wi + eta;
+  const Eigen::VectorXd dk = local_slopes(c, plo, phi);
+  const LocalTf nom = local_tf(c.nominal.b, c.nominal.a, c.nom_poles, plo, phi);
+  const Eigen::VectorXcd Fi = S.basis.frequency_responses(wi, n + c.K);
+  const Eigen::VectorXcd dF = Fi - cell.Fj;
+  double g = 2 * S.tail_remainder, direct = S.tail_remainder;
+  double lipg = c.wg.dot(dk), lipd = std::min(c.Gder, nom.der) + c.wd.dot(dk);
+  for (int k = 0; k < n + c.K; ++k) {
+    g += c.wg[k] * std::abs(dF[k]);
+    direct += c.wg[k] * std::abs(Fi[k]);
+  }
+  if (c.ellipsoid) {  // slope: |F'^T e| <= s sqrt(d^T |P| d), |F_k'| <= d_k
+    g += ellipsoid_term(c, dF.head(n));
+    direct += ellipsoid_term(c, Fi.head(n));
+    lipg += S.theta_scale * std::sqrt(std::max(0.0, dk.head(n).dot(c.Pabs * dk.head(n))));
+  }
+  const std::complex<double> Gi = Fi.head(n).transpose() * c.th, Ghi = c.nominal(wi);
+  const std::complex<double> delta = (Gi - cell.Gr) - (Ghi - cell.Gh);
+  direct += std::abs(Gi - Ghi);
+  const double value = std::min(S.regions[cell.j].max_distance(cell.Gh - delta) + g, direct);
+  // |W| on the piece: 1 / (|h(w_i)| - eta sup|h'|) where positive (local), else the global slope.
+  const double hi_abs = std::abs(polynomial_at(c.h, wi)), hlo = hi_abs - eta * c.hder;
+  const double Wi = std::min(1 / hi_abs + eta * c.Wder, hlo > 0 ? 1 / hlo : inf);
+  return {Wi * (value + eta * (lipd + lipg)), value / hi_abs, cell.j, wi, eta};
+}
+
+BandContext band_context(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h,
+                         double Wder, double Gder) {
+  BandContext c{S, nominal, h};
+  const OrthonormalBasis& basis = S.basis;
+  c.Wder = Wder;
+  c.Gder = Gder;
+  c.hder = polynomial_derivative_bound(h);  // >= sup|h'|
+  c.n = static_cast<int>(S.theta_ref.size());
+  c.K = static_cast<int>(S.tail_coefficients.size());
+  c.m = basis.block();
+  c.D0 = basis.front_derivative_bound();
+  c.H0 = basis.hinf_bound();
+  c.L0 = basis.allpass_derivative_bound();
+  for (const auto& f : basis.fronts()) c.front_poles.push_back(f.poles());
+  c.ap_poles = basis.allpass().poles();
+  c.nom_poles = nominal.poles();
+  c.ellipsoid = S.theta_covariance.rows() == c.n && S.theta_offset.size() == c.n && c.n > 0;
+  if (c.ellipsoid) c.Pabs = S.theta_covariance.cwiseAbs();
+  c.wg.resize(c.n + c.K);
+  c.wd.resize(c.n + c.K);
+  if (c.ellipsoid)
+    c.wg << S.theta_offset, S.tail_coefficients;
+  else
+    c.wg << S.theta_radius, S.tail_coefficients;
+  c.wd << S.theta_ref.cwiseAbs(), Eigen::VectorXd::Zero(c.K);
+  c.th = S.theta_ref.cast<std::complex<double>>();
+  return c;
+}
+
+// Adaptive pieces: start with `initial` pieces per cell, then halve the piece with the largest
+// bound until that bound is within `tolerance` (relative) of the largest value at a centre (no
+// refinement can go below it), or `budget` more pieces have been evaluated. The answer is the
+// largest bound over a partition of [0, pi], whichever piece stops the refinement.
 double data_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h, double Wder,
                   double Gder, double& kappa) {
   const int n = static_cast<int>(S.theta_ref.size());
@@ -686,76 +848,42 @@ double data_bound(const UncertaintySet& S, const TransferFunction& nominal, cons
     kappa = inf;
     return inf;
   }
-  const OrthonormalBasis& basis = S.basis;
-  const int m = basis.block(), K = static_cast<int>(S.tail_coefficients.size());
-  const double D0 = basis.front_derivative_bound(), H0 = basis.hinf_bound(), L0 = basis.allpass_derivative_bound();
-  std::vector<Eigen::VectorXcd> front_poles;
-  for (const auto& f : basis.fronts()) front_poles.push_back(f.poles());
-  const Eigen::VectorXcd ap_poles = basis.allpass().poles(), nom_poles = nominal.poles();
+  const BandContext c = band_context(S, nominal, h, Wder, Gder);
   // Global slope kappa (reported): sum_k radius_k sup|F_k'| + sup|T'|.
   kappa = S.tail_beta;
-  for (int k = 0; k < n; ++k) kappa += S.theta_radius[k] * (D0 + double(k / m) * H0 * L0);
-  // Weights of |F_k(w) - F_k(w_j)| in g and in the Lipschitz constant of Delta. With the
-  // ellipsoid (stochastic), the first n weights are the worst-case offsets and the noise part is
-  // bounded in the direction itself: sup_{e^T P^-1 e <= s^2} |a^T e| = s sqrt(a^H P a).
-  const bool ellipsoid = S.theta_covariance.rows() == n && S.theta_offset.size() == n && n > 0;
-  const Eigen::MatrixXd& P = S.theta_covariance;
-  const Eigen::MatrixXd Pabs = ellipsoid ? Eigen::MatrixXd(P.cwiseAbs()) : Eigen::MatrixXd();
-  Eigen::VectorXd wg(n + K), wd(n + K);
-  if (ellipsoid)
-    wg << S.theta_offset, S.tail_coefficients;
-  else
-    wg << S.theta_radius, S.tail_coefficients;
-  wd << S.theta_ref.cwiseAbs(), Eigen::VectorXd::Zero(K);
-  const Eigen::VectorXcd th = S.theta_ref.cast<std::complex<double>>();
+  for (int k = 0; k < n; ++k) kappa += S.theta_radius[k] * (c.D0 + double(k / c.m) * c.H0 * c.L0);
   const auto& w = S.frequencies;
-  const int nw = static_cast<int>(w.size()), sub = 64;
-  const double hder = polynomial_derivative_bound(h);  // >= sup|h'|
-  double b = 0;
+  const int nw = static_cast<int>(w.size()), initial = 16, budget = 64 * nw;
+  const double tolerance = 0.01;
+  std::vector<Cell> cells(nw);
+  std::vector<Piece> heap;
+  double best_point = 0;
   for (int j = 0; j < nw; ++j) {
-    const double lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]), hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
-    const Eigen::VectorXcd Fj = basis.frequency_responses(w[j], n + K);
-    const std::complex<double> Gr = Fj.head(n).transpose() * th, Gh = nominal(w[j]);
-    const double eta = (hi - lo) / (2 * sub);
-    for (int i = 0; i < sub; ++i) {
-      const double wi = lo + (2 * i + 1) * eta, plo = wi - eta, phi = wi + eta;
-      // Local sup|F_k'| <= Dc + floor(k/m) Hc Lc on the piece (never above the global bound).
-      double Hc = 0, Dc = 0, Lc = 0;
-      for (std::size_t f = 0; f < front_poles.size(); ++f) {
-        const LocalTf t = local_tf(basis.fronts()[f].b, basis.fronts()[f].a, front_poles[f], plo, phi);
-        Hc = std::max(Hc, t.sup);
-        Dc = std::max(Dc, t.der);
-      }
-      for (Eigen::Index q = 0; q < ap_poles.size(); ++q) {
-        const double d = arc_distance(ap_poles[q], plo, phi), r = std::abs(ap_poles[q]);
-        Lc += d > 0 ? (1 - r * r) / (d * d) : inf;
-      }
-      const LocalTf nom = local_tf(nominal.b, nominal.a, nom_poles, plo, phi);
-      const Eigen::VectorXcd Fi = basis.frequency_responses(wi, n + K);
-      double g = 2 * S.tail_remainder, lipg = 0, lipd = std::min(Gder, nom.der);
-      Eigen::VectorXd dks(n);
-      for (int k = 0; k < n + K; ++k) {
-        const double dk = std::min(D0 + double(k / m) * H0 * L0, Dc + double(k / m) * Hc * Lc);
-        if (k < n) dks[k] = dk;
-        g += wg[k] * std::abs(Fi[k] - Fj[k]);
-        lipg += wg[k] * dk;
-        lipd += wd[k] * dk;
-      }
-      if (ellipsoid) {  // |a^T e| <= s sqrt(a^H P a); slope: |F'^T e| <= s sqrt(d^T |P| d), |F_k'| <= d_k
-        const Eigen::VectorXd are = (Fi.head(n) - Fj.head(n)).real(), aim = (Fi.head(n) - Fj.head(n)).imag();
-        g += S.theta_scale * std::sqrt(std::max(0.0, are.dot(P * are) + aim.dot(P * aim)));
-        lipg += S.theta_scale * std::sqrt(std::max(0.0, dks.dot(Pabs * dks)));
-      }
-      const std::complex<double> Gi = Fi.head(n).transpose() * th;
-      const std::complex<double> delta = (Gi - Gr) - (nominal(wi) - Gh);
-      const double dist = S.regions[j].max_distance(Gh - delta) + eta * lipd + g + eta * lipg;
-      // |W| on the piece: 1 / (|h(w_i)| - eta sup|h'|) where positive (local), else the global slope.
-      const double hi_abs = std::abs(polynomial_at(h, wi)), hlo = hi_abs - eta * hder;
-      const double Wi = std::min(1 / hi_abs + eta * Wder, hlo > 0 ? 1 / hlo : inf);
-      b = std::max(b, Wi * dist);
+    Cell& cell = cells[j];
+    cell.j = j;
+    cell.lo = j == 0 ? 0 : 0.5 * (w[j - 1] + w[j]);
+    cell.hi = j == nw - 1 ? pi : 0.5 * (w[j] + w[j + 1]);
+    cell.Fj = S.basis.frequency_responses(w[j], c.n + c.K);
+    cell.Gr = cell.Fj.head(n).transpose() * c.th;
+    cell.Gh = nominal(w[j]);
+    const double eta = (cell.hi - cell.lo) / (2 * initial);
+    for (int i = 0; i < initial; ++i) {
+      heap.push_back(evaluate_piece(c, cell, cell.lo + (2 * i + 1) * eta, eta));
+      best_point = std::max(best_point, heap.back().point);
     }
   }
-  return b;
+  std::make_heap(heap.begin(), heap.end());
+  for (int spent = 0; spent < budget && heap.front().bound > (1 + tolerance) * best_point; spent += 2) {
+    std::pop_heap(heap.begin(), heap.end());
+    const Piece p = heap.back();
+    heap.pop_back();
+    for (double side : {-0.5, 0.5}) {
+      heap.push_back(evaluate_piece(c, cells[p.cell], p.centre + side * p.eta, 0.5 * p.eta));
+      best_point = std::max(best_point, heap.back().point);
+      std::push_heap(heap.begin(), heap.end());
+    }
+  }
+  return heap.front().bound;
 }
 }  // namespace
 
