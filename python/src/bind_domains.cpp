@@ -54,7 +54,7 @@ void bind_zonotope(py::module_& m) {
         "An outer approximation of Z with at most max(n, order*n) generators (order >= 1); always contains Z.");
   m.def("compact", &compact, py::arg("Z"), "Removes zero generators and merges parallel ones (contains Z).");
   m.def("try_intersect_strip",
-        py::overload_cast<const Zonotope&, const VectorXd&, double, double>(&try_intersect_strip), py::arg("Z"), py::arg("a"), py::arg("y"), py::arg("delta"),
+        py::overload_cast<const Zonotope&, const Eigen::Ref<const VectorXd>&, double, double>(&try_intersect_strip), py::arg("Z"), py::arg("a"), py::arg("y"), py::arg("delta"),
         "Outer zonotope of Z ∩ {x : |y - a^T x| <= delta} (Alamo–Bravo–Camacho), None if provably empty.");
 }
 
@@ -79,7 +79,7 @@ void bind_ellipsoid(py::module_& m) {
   m.def("volume", py::overload_cast<const Ellipsoid&>(&volume), py::arg("E"), "Volume (floating point, approximate).");
   m.def("flatness", &flatness, py::arg("E"), "Smallest over largest eigenvalue of P (floating point).");
   m.def("intersect_strip",
-        py::overload_cast<const Ellipsoid&, const VectorXd&, double, double, EllipsoidCriterion>(&intersect_strip),
+        py::overload_cast<const Ellipsoid&, const Eigen::Ref<const VectorXd>&, double, double, EllipsoidCriterion>(&intersect_strip),
         py::arg("E"), py::arg("a"), py::arg("y"), py::arg("delta"), py::arg("criterion") = EllipsoidCriterion::min_volume,
         "Optimal bounding ellipsoid of E ∩ {x : |y - a^T x| <= delta} (Fogel–Huang); contains the intersection.\n"
         "Raises EmptySetError when the intersection is provably empty (the data falsify the model).");
@@ -124,29 +124,29 @@ void bind_generic(py::module_& m) {
   m.def("outer_box", py::overload_cast<const HPolytope&>(&outer_box), py::arg("set"), release_gil());
   m.def("outer_box", py::overload_cast<const VPolytope&>(&outer_box), py::arg("set"));
 
-  m.def("support", py::overload_cast<const Zonotope&, const VectorXd&>(&support), py::arg("set"), py::arg("d"),
+  m.def("support", py::overload_cast<const Zonotope&, const Eigen::Ref<const VectorXd>&>(&support), py::arg("set"), py::arg("d"),
         "Rigorous upper bound on max_{x in set} d^T x.");
-  m.def("support", py::overload_cast<const Ellipsoid&, const VectorXd&>(&support), py::arg("set"), py::arg("d"));
-  m.def("support", py::overload_cast<const HPolytope&, const VectorXd&>(&support), py::arg("set"), py::arg("d"),
+  m.def("support", py::overload_cast<const Ellipsoid&, const Eigen::Ref<const VectorXd>&>(&support), py::arg("set"), py::arg("d"));
+  m.def("support", py::overload_cast<const HPolytope&, const Eigen::Ref<const VectorXd>&>(&support), py::arg("set"), py::arg("d"),
         release_gil());
-  m.def("support", py::overload_cast<const VPolytope&, const VectorXd&>(&support), py::arg("set"), py::arg("d"));
+  m.def("support", py::overload_cast<const VPolytope&, const Eigen::Ref<const VectorXd>&>(&support), py::arg("set"), py::arg("d"));
 
-  m.def("contains", py::overload_cast<const Zonotope&, const VectorXd&>(&contains), py::arg("set"), py::arg("x"),
+  m.def("contains", py::overload_cast<const Zonotope&, const Eigen::Ref<const VectorXd>&>(&contains), py::arg("set"), py::arg("x"),
         "Is x in the set? A BoolInterval: yes/no only when proven.");
-  m.def("contains", py::overload_cast<const Ellipsoid&, const VectorXd&>(&contains), py::arg("set"), py::arg("x"));
-  m.def("contains", py::overload_cast<const HPolytope&, const VectorXd&>(&contains), py::arg("set"), py::arg("x"));
-  m.def("contains", py::overload_cast<const VPolytope&, const VectorXd&>(&contains), py::arg("set"), py::arg("x"));
+  m.def("contains", py::overload_cast<const Ellipsoid&, const Eigen::Ref<const VectorXd>&>(&contains), py::arg("set"), py::arg("x"));
+  m.def("contains", py::overload_cast<const HPolytope&, const Eigen::Ref<const VectorXd>&>(&contains), py::arg("set"), py::arg("x"));
+  m.def("contains", py::overload_cast<const VPolytope&, const Eigen::Ref<const VectorXd>&>(&contains), py::arg("set"), py::arg("x"));
 
-  m.def("linear_map", py::overload_cast<const MatrixXd&, const Zonotope&>(&linear_map), py::arg("A"), py::arg("set"),
+  m.def("linear_map", py::overload_cast<const Eigen::Ref<const MatrixXd>&, const Zonotope&>(&linear_map), py::arg("A"), py::arg("set"),
         "Image A set. Zonotope, Ellipsoid, HPolytope: contains the exact image; VPolytope: points mapped in\n"
         "floating point (approximate).");
-  m.def("linear_map", py::overload_cast<const MatrixXd&, const Ellipsoid&>(&linear_map), py::arg("A"), py::arg("set"));
-  m.def("linear_map", py::overload_cast<const MatrixXd&, const HPolytope&>(&linear_map), py::arg("A"), py::arg("set"),
+  m.def("linear_map", py::overload_cast<const Eigen::Ref<const MatrixXd>&, const Ellipsoid&>(&linear_map), py::arg("A"), py::arg("set"));
+  m.def("linear_map", py::overload_cast<const Eigen::Ref<const MatrixXd>&, const HPolytope&>(&linear_map), py::arg("A"), py::arg("set"),
         release_gil());
-  m.def("linear_map", py::overload_cast<const MatrixXd&, const VPolytope&>(&linear_map), py::arg("A"), py::arg("set"));
+  m.def("linear_map", py::overload_cast<const Eigen::Ref<const MatrixXd>&, const VPolytope&>(&linear_map), py::arg("A"), py::arg("set"));
 
-  m.def("translate", py::overload_cast<const Zonotope&, const VectorXd&>(&translate), py::arg("set"), py::arg("b"));
-  m.def("translate", py::overload_cast<const Ellipsoid&, const VectorXd&>(&translate), py::arg("set"), py::arg("b"));
+  m.def("translate", py::overload_cast<const Zonotope&, const Eigen::Ref<const VectorXd>&>(&translate), py::arg("set"), py::arg("b"));
+  m.def("translate", py::overload_cast<const Ellipsoid&, const Eigen::Ref<const VectorXd>&>(&translate), py::arg("set"), py::arg("b"));
   m.def("minkowski_sum", py::overload_cast<const Zonotope&, const Zonotope&>(&minkowski_sum), py::arg("a"),
         py::arg("b"), "Z1 + Z2 (exact up to rounding of the centre).");
   m.def("minkowski_sum", py::overload_cast<const Ellipsoid&, const Ellipsoid&, EllipsoidCriterion>(&minkowski_sum),

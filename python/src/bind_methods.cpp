@@ -73,7 +73,7 @@ void bind_ss_uncertainty(py::module_& m) {
       .def_readwrite("C", &StateSpaceModel::C)
       .def_readwrite("D", &StateSpaceModel::D);
   m.def("simulate_state_space",
-        py::overload_cast<const StateSpaceModel&, const MatrixXd&, const VectorXd&>(&simulate), py::arg("model"), py::arg("u"), py::arg("x0") = VectorXd(),
+        py::overload_cast<const StateSpaceModel&, const Eigen::Ref<const MatrixXd>&, const Eigen::Ref<const VectorXd>&>(&simulate), py::arg("model"), py::arg("u"), py::arg("x0") = VectorXd(),
         "Simulates from x0 (zero if empty); u is N x nu, the result N x ny.");
   py::class_<ObservabilityRow>(m, "ObservabilityRow", "Row C(output,:) A^lag of the observability matrix.")
       .def(py::init([](int lag, int output) { return ObservabilityRow{lag, output}; }), py::arg("lag"), py::arg("output"))
@@ -307,7 +307,7 @@ void bind_tv(py::module_& m) {
   py::class_<TimeVaryingSimulation>(m, "TimeVaryingSimulation")
       .def_readonly("x", &TimeVaryingSimulation::x)
       .def_readonly("y", &TimeVaryingSimulation::y);
-  m.def("simulate_time_varying", py::overload_cast<const TimeVaryingModel&, const VectorXd&, const MatrixXd&, const MatrixXd&>(&simulate),
+  m.def("simulate_time_varying", py::overload_cast<const TimeVaryingModel&, const Eigen::Ref<const VectorXd>&, const Eigen::Ref<const MatrixXd>&, const Eigen::Ref<const MatrixXd>&>(&simulate),
         py::arg("model"), py::arg("x0"), py::arg("u"), py::arg("pi"), "Exact simulation of eq. (1).");
   py::class_<BiaffineRegression>(m, "BiaffineRegression")
       .def_readonly("zeta", &BiaffineRegression::zeta)

@@ -239,8 +239,8 @@ struct Run {
 
 // `schedule` (optional, samples x parameters): the parameter values held over each sample
 // interval, replacing `params` from that sample on.
-static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixXd* outputs, Eigen::MatrixXd* values,
-               const Eigen::MatrixXd* schedule = nullptr) {
+static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& params, Eigen::MatrixXd* outputs,
+               Eigen::MatrixXd* values, const Eigen::Ref<const Eigen::MatrixXd>* schedule = nullptr) {
   Run r;
   const int N = static_cast<int>(I.time.size());
   const std::size_t ns = I.state_slots.size();
@@ -327,7 +327,7 @@ static Run run(Simulator::Impl& I, const Eigen::VectorXd& params, Eigen::MatrixX
   return r;
 }
 
-SimulationResult Simulator::simulate(const Eigen::VectorXd& parameters) const {
+SimulationResult Simulator::simulate(const Eigen::Ref<const Eigen::VectorXd>& parameters) const {
   SimulationResult res;
   for (int s : impl_->recorded_slots) res.names.push_back(impl_->name_of_slot.at(s));
   Run r;
@@ -345,7 +345,7 @@ SimulationResult Simulator::simulate(const Eigen::VectorXd& parameters) const {
   return res;
 }
 
-bool Simulator::simulate_outputs(const Eigen::VectorXd& parameters, Eigen::MatrixXd& outputs) const {
+bool Simulator::simulate_outputs(const Eigen::Ref<const Eigen::VectorXd>& parameters, Eigen::MatrixXd& outputs) const {
   try {
     return run(*impl_, parameters, &outputs, nullptr).ok;
   } catch (const mu::Parser::exception_type&) {
@@ -353,7 +353,8 @@ bool Simulator::simulate_outputs(const Eigen::VectorXd& parameters, Eigen::Matri
   }
 }
 
-bool Simulator::simulate_outputs_scheduled(const Eigen::MatrixXd& schedule, Eigen::MatrixXd& outputs) const {
+bool Simulator::simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixXd>& schedule,
+                                           Eigen::MatrixXd& outputs) const {
   if (schedule.rows() != samples() || schedule.cols() != static_cast<Eigen::Index>(impl_->param_slots.size()))
     throw InputError("parameter schedule is " + std::to_string(schedule.rows()) + " x " + std::to_string(schedule.cols()) +
                      ", expected samples x parameters = " + std::to_string(samples()) + " x " +

@@ -48,14 +48,14 @@ Ellipsoid::Ellipsoid(Eigen::VectorXd center, Eigen::MatrixXd shape)
   }
 }
 
-Ellipsoid Ellipsoid::ball(const Eigen::VectorXd& c, double r) {
+Ellipsoid Ellipsoid::ball(const Eigen::Ref<const Eigen::VectorXd>& c, double r) {
   if (!(r >= 0) || !std::isfinite(r)) throw InputError("Ellipsoid::ball: radius must be finite and >= 0");
   const Interval r2 = Interval(r) * Interval(r);
   return Ellipsoid(c, r2.upper() * Eigen::MatrixXd::Identity(c.size(), c.size()));
 }
 
-Ellipsoid Ellipsoid::from_level_set(const Eigen::VectorXd& theta0, const Eigen::MatrixXd& R,
-                                    double gamma) {
+Ellipsoid Ellipsoid::from_level_set(const Eigen::Ref<const Eigen::VectorXd>& theta0,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& R, double gamma) {
   const auto n = theta0.size();
   if (R.rows() != n || R.cols() != n)
     throw InputError("Ellipsoid::from_level_set: theta0 has " + std::to_string(n) +
@@ -165,7 +165,7 @@ Ellipsoid project(const Ellipsoid& E, const std::vector<int>& coords) {
 }
 
 std::optional<Ellipsoid> slice(const Ellipsoid& E, const std::vector<int>& coords,
-                               const Eigen::VectorXd& fixed) {
+                               const Eigen::Ref<const Eigen::VectorXd>& fixed) {
   check_coords(E, coords, "slice");
   const int n = E.dimension();
   std::vector<bool> kept(n, false);
@@ -211,7 +211,7 @@ std::optional<Ellipsoid> slice(const Ellipsoid& E, const std::vector<int>& coord
   return Ellipsoid(c, std::max(kappa, 0.0) * S);
 }
 
-double support(const Ellipsoid& E, const Eigen::VectorXd& d) {
+double support(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& d) {
   check_dim(E, d.size(), "support");
   const IntervalVector di = detail::iv(d);
   const Interval lin = detail::dot(di, detail::iv(E.center()));
@@ -230,7 +230,7 @@ IntervalVector outer_box(const Ellipsoid& E) {
   return b;
 }
 
-BoolInterval contains(const Ellipsoid& E, const Eigen::VectorXd& x) {
+BoolInterval contains(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& x) {
   check_dim(E, x.size(), "contains");
   if (!x.allFinite()) throw InputError("contains: point has a NaN or infinite entry");
   const int n = E.dimension();
@@ -308,18 +308,18 @@ double flatness(const Ellipsoid& E) {
 
 // ------------------------------------------------------------------------------- operations
 
-Ellipsoid linear_map(const Eigen::MatrixXd& A, const Ellipsoid& E) {
+Ellipsoid linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const Ellipsoid& E) {
   if (A.cols() != E.dimension())
     throw InputError("linear_map: matrix has " + std::to_string(A.cols()) +
                      " columns but the ellipsoid has dimension " + std::to_string(E.dimension()));
   if (!A.allFinite()) throw InputError("linear_map: matrix has a NaN or infinite entry");
   const IntervalMatrix Ai = detail::im(A);
-  const IntervalVector c = multiply(A, detail::iv(E.center()));
+  const IntervalVector c = multiply(Eigen::MatrixXd(A), detail::iv(E.center()));
   const IntervalMatrix P = detail::multiply(detail::multiply(Ai, detail::im(E.shape())), Ai.transpose());
   return detail::outer_ellipsoid(c, P);
 }
 
-Ellipsoid translate(const Ellipsoid& E, const Eigen::VectorXd& b) {
+Ellipsoid translate(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& b) {
   check_dim(E, b.size(), "translate");
   const IntervalVector c = detail::iv(E.center()) + detail::iv(b);
   return detail::outer_ellipsoid(c, detail::im(E.shape()));
@@ -388,7 +388,7 @@ Ellipsoid minkowski_sum(const Ellipsoid& E1, const Ellipsoid& E2, EllipsoidCrite
   return detail::outer_ellipsoid(c, S);
 }
 
-std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y,
+std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y,
                                              double delta, const StripOptions& options) {
   check_dim(E, a.size(), "intersect_strip");
   if (!a.allFinite() || !std::isfinite(y) || !std::isfinite(delta) || delta < 0)
@@ -490,7 +490,7 @@ std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ve
   return cand[best];
 }
 
-Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
+Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y, double delta,
                           const StripOptions& options) {
   auto r = try_intersect_strip(E, a, y, delta, options);
   if (!r)
@@ -499,7 +499,7 @@ Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y
   return *r;
 }
 
-Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
+Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y, double delta,
                           EllipsoidCriterion criterion) {
   return intersect_strip(E, a, y, delta, StripOptions{criterion});
 }

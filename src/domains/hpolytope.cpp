@@ -24,7 +24,7 @@ HPolytope::HPolytope(Eigen::MatrixXd A, Eigen::VectorXd b) : A_(std::move(A)), b
     if (b_[i] == -inf) throw InputError("HPolytope: b(" + std::to_string(i) + ") is -inf");
 }
 
-BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x) {
+BoolInterval contains(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (x.size() != P.dimension())
     throw InputError("contains: point has " + std::to_string(x.size()) + " entries, polytope dimension " +
                      std::to_string(P.dimension()));
@@ -156,7 +156,9 @@ IntervalVector outer_box(const HPolytope& P) {
   return box;
 }
 
-double support(const HPolytope& P, const Eigen::VectorXd& d) { return safe_maxima(P, {d}, "support")[0]; }
+double support(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& d) {
+  return safe_maxima(P, {d}, "support")[0];
+}
 
 std::vector<double> support(const HPolytope& P, const std::vector<Eigen::VectorXd>& directions) {
   return safe_maxima(P, directions, "support");
@@ -254,7 +256,7 @@ HPolytope remove_redundant(const HPolytope& P) {
   return HPolytope(A, b);
 }
 
-HPolytope linear_map(const Eigen::MatrixXd& M, const HPolytope& P) {
+HPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& M, const HPolytope& P) {
   const int n = P.dimension();
   if (M.rows() != n || M.cols() != n)
     throw UnsupportedError("linear_map(HPolytope): only square invertible maps are supported (got " +

@@ -209,7 +209,7 @@ Eigen::MatrixXd projection_polygon(const AnySet& set, int i, int j, int directio
       set);
 }
 
-void write_polygon(std::ostream& os, const Eigen::MatrixXd& V) {
+void write_polygon(std::ostream& os, const Eigen::Ref<const Eigen::MatrixXd>& V) {
   if (V.rows() != 2) throw InputError("write_polygon: vertices must be a 2 x k matrix");
   const auto old = os.precision(17);
   for (Eigen::Index k = 0; k <= V.cols(); ++k) {

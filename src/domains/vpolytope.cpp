@@ -21,7 +21,7 @@ IntervalVector outer_box(const VPolytope& V) {
   return b;
 }
 
-double support(const VPolytope& V, const Eigen::VectorXd& d) {
+double support(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& d) {
   if (d.size() != V.dimension()) throw InputError("support: direction has the wrong dimension");
   const IntervalVector di = detail::iv(d);
   double best = -inf;
@@ -30,7 +30,7 @@ double support(const VPolytope& V, const Eigen::VectorXd& d) {
   return best;
 }
 
-BoolInterval contains(const VPolytope& V, const Eigen::VectorXd& x) {
+BoolInterval contains(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (x.size() != V.dimension()) throw InputError("contains: point has the wrong dimension");
   if (!x.allFinite()) throw InputError("contains: point has a NaN or infinite entry");
   // x = V lambda, sum lambda = 1, lambda >= 0: the data are doubles, so the exact simplex decides.
@@ -49,7 +49,7 @@ BoolInterval contains(const VPolytope& V, const Eigen::VectorXd& x) {
   }
 }
 
-VPolytope linear_map(const Eigen::MatrixXd& A, const VPolytope& V) {
+VPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V) {
   if (A.cols() != V.dimension()) throw InputError("linear_map: matrix has the wrong number of columns");
   return VPolytope(A * V.points());
 }

@@ -101,7 +101,7 @@ Eigen::MatrixXd product_error(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B
 
 }  // namespace
 
-Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z) {
+Zonotope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const Zonotope& Z) {
   if (A.cols() != Z.dimension())
     throw InputError("linear_map: matrix has " + std::to_string(A.cols()) +
                      " columns but the zonotope has dimension " + std::to_string(Z.dimension()));
@@ -110,7 +110,7 @@ Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z) {
   // centre's rounding error as one axis-aligned generator per row.
   const Eigen::MatrixXd AG = A * Z.generators();
   const Eigen::MatrixXd err = product_error(A, Z.generators());
-  const IntervalVector c = multiply(A, detail::iv(Z.center()));
+  const IntervalVector c = multiply(Eigen::MatrixXd(A), detail::iv(Z.center()));
   const auto n = A.rows();
   IntervalMatrix box = IntervalMatrix::Constant(n, 1, Interval(0.0));
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -124,7 +124,7 @@ Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z) {
   return compact(Zonotope(E.center(), G));
 }
 
-Zonotope translate(const Zonotope& Z, const Eigen::VectorXd& b) {
+Zonotope translate(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& b) {
   if (b.size() != Z.dimension()) throw InputError("translate: dimensions differ");
   return detail::outer_zonotope(detail::iv(Z.center()) + detail::iv(b), detail::im(Z.generators()));
 }
@@ -152,7 +152,7 @@ IntervalVector outer_box(const Zonotope& Z) {
   return b;
 }
 
-double support(const Zonotope& Z, const Eigen::VectorXd& d) {
+double support(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& d) {
   if (d.size() != Z.dimension()) throw InputError("support: direction has the wrong dimension");
   const IntervalVector di = detail::iv(d);
   Interval s = detail::dot(di, detail::iv(Z.center()));
@@ -166,7 +166,7 @@ double support(const Zonotope& Z, const Eigen::VectorXd& d) {
 namespace {
 
 // d separates x from Z when d^T x > support(Z, d), proven in interval arithmetic.
-bool separates(const Zonotope& Z, const Eigen::VectorXd& x, const Eigen::VectorXd& d) {
+bool separates(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::VectorXd& d) {
   if (!d.allFinite() || d.isZero(0)) return false;
   const Interval dx = detail::dot(detail::iv(d), detail::iv(x));
   return dx.lower() > support(Z, d);
@@ -174,7 +174,7 @@ bool separates(const Zonotope& Z, const Eigen::VectorXd& x, const Eigen::VectorX
 
 }  // namespace
 
-BoolInterval contains(const Zonotope& Z, const Eigen::VectorXd& x) {
+BoolInterval contains(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& x) {
   const int n = Z.dimension(), m = Z.num_generators();
   if (x.size() != n) throw InputError("contains: point has the wrong dimension");
   if (!x.allFinite()) throw InputError("contains: point has a NaN or infinite entry");
@@ -327,7 +327,7 @@ Zonotope reduce_order(const Zonotope& Zin, double order, ReductionMethod method)
 
 // ------------------------------------------------------------------------------- strips and FPS
 
-std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::VectorXd& a, double y,
+std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& a, double y,
                                             double delta) {
   const int n = Z.dimension();
   if (a.size() != n) throw InputError("intersect_strip: regressor has the wrong dimension");

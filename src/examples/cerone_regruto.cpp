@@ -26,7 +26,7 @@ LpvModelStructure lagged_structure() {
   return m;
 }
 
-Eigen::MatrixXd lagged(const Eigen::VectorXd& x) {
+Eigen::MatrixXd lagged(const Eigen::Ref<const Eigen::VectorXd>& x) {
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(x.size(), 2);
   for (Eigen::Index t = 1; t < x.size(); ++t) m(t, 0) = x[t - 1];
   for (Eigen::Index t = 2; t < x.size(); ++t) m(t, 1) = x[t - 2];

@@ -4,7 +4,8 @@
 
 namespace sets {
 
-Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::MatrixXd& u, const Eigen::VectorXd& x0) {
+Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                         const Eigen::Ref<const Eigen::VectorXd>& x0) {
   const auto n = m.A.rows();
   if (m.A.cols() != n || m.B.rows() != n || m.B.cols() != u.cols() || m.C.cols() != n || m.D.rows() != m.C.rows() ||
       m.D.cols() != u.cols() || (x0.size() != 0 && x0.size() != n))

@@ -9,7 +9,7 @@ namespace sets {
 
 namespace {
 
-std::string dims(const Eigen::MatrixXd& M) {
+std::string dims(const Eigen::Ref<const Eigen::MatrixXd>& M) {
   return std::to_string(M.rows()) + " x " + std::to_string(M.cols());
 }
 
@@ -43,8 +43,8 @@ Eigen::MatrixXd kron_identity(int q, const Eigen::VectorXd& v) {
   return K;
 }
 
-void check_signals(const TimeVaryingModel& model, const Eigen::VectorXd& x0, const Eigen::MatrixXd& u,
-                   const char* where) {
+void check_signals(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                   const Eigen::Ref<const Eigen::MatrixXd>& u, const char* where) {
   model.validate();
   if (x0.size() != model.states())
     throw InputError(std::string(where) + ": x0 has " + std::to_string(x0.size()) + " entries, the model " +
@@ -59,8 +59,9 @@ void check_signals(const TimeVaryingModel& model, const Eigen::VectorXd& x0, con
 
 }  // namespace
 
-TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                               const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi) {
+TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                               const Eigen::Ref<const Eigen::MatrixXd>& u,
+                               const Eigen::Ref<const Eigen::MatrixXd>& pi) {
   check_signals(model, x0, u, "simulate");
   const int N = static_cast<int>(u.rows()), q = model.parameters();
   if (pi.rows() != N || pi.cols() != q)
@@ -80,14 +81,15 @@ TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::Vecto
   return s;
 }
 
-BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                                       const Eigen::MatrixXd& u) {
+BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                       const Eigen::Ref<const Eigen::MatrixXd>& u) {
   check_signals(model, x0, u, "biaffine_regression");
   return linearised_regression(model, x0, u, Eigen::MatrixXd::Zero(u.rows(), model.parameters()));
 }
 
-BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                                         const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi_bar) {
+BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& pi_bar) {
   check_signals(model, x0, u, "linearised_regression");
   const int N = static_cast<int>(u.rows()), n = model.states(), l = model.outputs(), q = model.parameters();
   if (pi_bar.rows() != N || pi_bar.cols() != q)
@@ -121,13 +123,13 @@ BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Ei
   return r;
 }
 
-Eigen::VectorXd stack_samples(const Eigen::MatrixXd& signal) {
+Eigen::VectorXd stack_samples(const Eigen::Ref<const Eigen::MatrixXd>& signal) {
   Eigen::VectorXd s(signal.size());
   for (Eigen::Index k = 0; k < signal.rows(); ++k) s.segment(k * signal.cols(), signal.cols()) = signal.row(k).transpose();
   return s;
 }
 
-Eigen::MatrixXd unstack_samples(const Eigen::VectorXd& stacked, int width) {
+Eigen::MatrixXd unstack_samples(const Eigen::Ref<const Eigen::VectorXd>& stacked, int width) {
   if (width <= 0 || stacked.size() % width != 0)
     throw InputError("unstack_samples: " + std::to_string(stacked.size()) + " entries do not split into rows of " +
                      std::to_string(width));

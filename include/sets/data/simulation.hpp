@@ -55,13 +55,13 @@ class Simulator {
 
   /// Simulates with these parameter values (model order). A non-finite state throws
   /// NumericalError naming the time and the state.
-  SimulationResult simulate(const Eigen::VectorXd& parameters) const;
+  SimulationResult simulate(const Eigen::Ref<const Eigen::VectorXd>& parameters) const;
   /// Outputs only (cheaper), samples x outputs. Returns false instead of throwing on blow-up.
-  bool simulate_outputs(const Eigen::VectorXd& parameters, Eigen::MatrixXd& outputs) const;
+  bool simulate_outputs(const Eigen::Ref<const Eigen::VectorXd>& parameters, Eigen::MatrixXd& outputs) const;
   /// Outputs with time-varying parameters: row k of `schedule` (samples x parameters) holds the
   /// values used from sample k to sample k+1 (and by the sampled signals at k). Returns false on
   /// blow-up; InputError if the schedule has the wrong size.
-  bool simulate_outputs_scheduled(const Eigen::MatrixXd& schedule, Eigen::MatrixXd& outputs) const;
+  bool simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixXd>& schedule, Eigen::MatrixXd& outputs) const;
 
   struct Impl;  // muparser state (kept out of this header)
 

@@ -38,10 +38,10 @@ class Ellipsoid {
   /// Quadratic level set {theta : (theta-theta0)^T R (theta-theta0) <= gamma}, R symmetric
   /// positive definite, gamma >= 0: the ellipsoid with P = gamma R^{-1}. The inverse is
   /// verified and the stored P enlarged so that the result contains the level set.
-  static Ellipsoid from_level_set(const Eigen::VectorXd& theta0, const Eigen::MatrixXd& R,
-                                  double gamma);
+  static Ellipsoid from_level_set(const Eigen::Ref<const Eigen::VectorXd>& theta0,
+                                  const Eigen::Ref<const Eigen::MatrixXd>& R, double gamma);
   /// The ball of radius r around c.
-  static Ellipsoid ball(const Eigen::VectorXd& c, double r);
+  static Ellipsoid ball(const Eigen::Ref<const Eigen::VectorXd>& c, double r);
 
   int dimension() const { return static_cast<int>(c_.size()); }
   const Eigen::VectorXd& center() const { return c_; }
@@ -67,7 +67,7 @@ Ellipsoid project(const Ellipsoid& E, const std::vector<int>& coords);
 /// (also when v - c_F is off range(P_FF), i.e. outside a flat ellipsoid). Floating point:
 /// the slice is exact up to rounding, not enlarged. A slice is contained in the projection.
 std::optional<Ellipsoid> slice(const Ellipsoid& E, const std::vector<int>& coords,
-                               const Eigen::VectorXd& fixed_values_of_other_coords);
+                               const Eigen::Ref<const Eigen::VectorXd>& fixed_values_of_other_coords);
 
 /// Volume (Lebesgue measure) = vol(unit ball) sqrt(det P); 0 for a flat ellipsoid.
 /// Floating point (approximate, not a bound).
@@ -76,7 +76,7 @@ double volume(const Ellipsoid& E);
 double flatness(const Ellipsoid& E);
 
 /// E + b.
-Ellipsoid translate(const Ellipsoid& E, const Eigen::VectorXd& b);
+Ellipsoid translate(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& b);
 
 /// Outer approximation of the Minkowski sum E1 + E2 by the ellipsoid
 /// (1 + 1/p) P1 + (1 + p) P2 with p chosen by the criterion (min-trace: closed form;
@@ -95,14 +95,13 @@ struct StripOptions {
 /// minimum trace (1-D search). q = 0 (E returned unchanged) when the strip does not cut E enough
 /// to help. Works for singular P and delta = 0 (a hyperplane). The result is enlarged for
 /// rounding, so it always contains E ∩ strip. nullopt when E ∩ strip is provably empty.
-std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a,
-                                             double y, double delta,
-                                             const StripOptions& options = {});
+std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y,
+                                             double delta, const StripOptions& options = {});
 /// As try_intersect_strip, but throws EmptySetError when the intersection is provably empty
 /// (the data falsify the model).
-Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
+Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y, double delta,
                           const StripOptions& options = {});
-Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::VectorXd& a, double y, double delta,
+Ellipsoid intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y, double delta,
                           EllipsoidCriterion criterion);
 
 static_assert(ConvexSet<Ellipsoid>);  // the generic operations, sets/domains/set_operations.hpp

@@ -53,7 +53,7 @@ Eigen::MatrixXd projection_polygon(const AnySet& set, int i, int j, int directio
 
 /// Writes polygons as "x y" lines, each closed (first vertex repeated) and separated by a blank
 /// line: gnuplot's `plot 'file' with lines` and most plotting tools read it directly.
-void write_polygon(std::ostream& os, const Eigen::MatrixXd& vertices);
+void write_polygon(std::ostream& os, const Eigen::Ref<const Eigen::MatrixXd>& vertices);
 
 std::string to_string(const AnySet& set);
 /// Reads the text form of to_string. Throws InputError naming `where`, the line and column of a

@@ -37,14 +37,14 @@ class Zonotope;
 // ------------------------------------------------------------------------------- support
 
 /// d^T c + sum_j |d^T g_j|, rounded up.
-double support(const Zonotope& Z, const Eigen::VectorXd& d);
+double support(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& d);
 /// d^T c + sqrt(d^T P d), rounded up.
-double support(const Ellipsoid& E, const Eigen::VectorXd& d);
+double support(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& d);
 /// Maximum over the points in interval arithmetic (exact up to the final rounding up).
-double support(const VPolytope& V, const Eigen::VectorXd& d);
+double support(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& d);
 /// Certified by a Neumaier–Shcherbina safe bound from the LP's dual (+inf if unbounded or not
 /// certifiable). Throws EmptySetError if P is empty.
-double support(const HPolytope& P, const Eigen::VectorXd& d);
+double support(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& d);
 /// Rigorous upper bounds for several directions at once (one LP set-up).
 std::vector<double> support(const HPolytope& P, const std::vector<Eigen::VectorXd>& directions);
 
@@ -65,28 +65,28 @@ IntervalVector outer_box(const HPolytope& P);
 /// Decided by the LP  min t  s.t.  G xi = x - c, |xi_j| <= t. `no` is certified by a separating
 /// direction (support function), `yes` by a feasible xi whose residual is absorbed with a
 /// verified inverse of n independent generators; otherwise `unknown`.
-BoolInterval contains(const Zonotope& Z, const Eigen::VectorXd& x);
+BoolInterval contains(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& x);
 /// yes/no only when proven in interval arithmetic; unknown near the boundary and for most points
 /// of a flat ellipsoid (rounding cannot decide membership in a lower-dimensional set).
-BoolInterval contains(const Ellipsoid& E, const Eigen::VectorXd& x);
+BoolInterval contains(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& x);
 /// GLPK's exact rational simplex (yes/no; unknown only if that solver fails).
-BoolInterval contains(const VPolytope& V, const Eigen::VectorXd& x);
+BoolInterval contains(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& x);
 /// `unknown` when some a_i^T x - b_i cannot be sign-decided in interval arithmetic.
-BoolInterval contains(const HPolytope& P, const Eigen::VectorXd& x);
+BoolInterval contains(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& x);
 
 // ------------------------------------------------------------------------------- linear_map
 
 /// Centre A c, generators A G, plus rounding generators (contains the exact image).
-Zonotope linear_map(const Eigen::MatrixXd& A, const Zonotope& Z);
+Zonotope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const Zonotope& Z);
 /// Centre A c, shape A P A^T, enlarged for rounding so that it contains the exact image. A may be
 /// rectangular.
-Ellipsoid linear_map(const Eigen::MatrixXd& A, const Ellipsoid& E);
+Ellipsoid linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const Ellipsoid& E);
 /// Points mapped in floating point, rounded to nearest: approximate.
-VPolytope linear_map(const Eigen::MatrixXd& A, const VPolytope& V);
+VPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V);
 /// For square invertible A: normals A^{-T} a_i (rounded) with certified offsets, so the result
 /// contains A P and equals it up to rounding. Throws UnsupportedError for singular or non-square
 /// A (a projection; use to_vpolytope in 2-D/3-D) and for unbounded P.
-HPolytope linear_map(const Eigen::MatrixXd& A, const HPolytope& P);
+HPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const HPolytope& P);
 
 // ------------------------------------------------------------------------------- to_string
 

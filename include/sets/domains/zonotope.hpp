@@ -43,7 +43,7 @@ class Zonotope {
   Eigen::MatrixXd G_;
 };
 
-Zonotope translate(const Zonotope& Z, const Eigen::VectorXd& b);
+Zonotope translate(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& b);
 /// Z1 + Z2: centres added, generators concatenated (exact up to rounding of the centre).
 Zonotope minkowski_sum(const Zonotope& Z1, const Zonotope& Z2);
 
@@ -65,7 +65,7 @@ Zonotope compact(const Zonotope& Z);
 ///   c + lambda (y - a^T c) + [(I - lambda a^T) G, delta lambda] B,
 /// with lambda = G G^T a / (a^T G G^T a + delta^2) (minimum Frobenius norm of the generators).
 /// nullopt when Z and the strip provably do not meet.
-std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::VectorXd& a, double y,
+std::optional<Zonotope> try_intersect_strip(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>& a, double y,
                                             double delta);
 
 static_assert(ConvexSet<Zonotope>);  // the generic operations, sets/domains/set_operations.hpp

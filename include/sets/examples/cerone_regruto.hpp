@@ -22,7 +22,7 @@ Eigen::VectorXd true_theta();
 /// scheduling columns [lambda_{t-1}, lambda_{t-2}] (lagged()).
 LpvModelStructure lagged_structure();
 /// [x_{t-1}, x_{t-2}] (zero before the first sample).
-Eigen::MatrixXd lagged(const Eigen::VectorXd& x);
+Eigen::MatrixXd lagged(const Eigen::Ref<const Eigen::VectorXd>& x);
 
 /// One noise level of a table as printed: SNRs (dB), theta_c and Delta theta per parameter.
 struct PaperLevel {

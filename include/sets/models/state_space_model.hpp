@@ -15,7 +15,7 @@ struct StateSpaceModel {
 
 /// Simulates the model from x(0) = x0 (zero if empty); u is N x nu, the result N x ny (time along
 /// rows). Throws InputError when the dimensions of A, B, C, D, u and x0 do not match.
-Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::MatrixXd& u,
-                         const Eigen::VectorXd& x0 = Eigen::VectorXd());
+Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                         const Eigen::Ref<const Eigen::VectorXd>& x0 = Eigen::VectorXd());
 
 }  // namespace sets

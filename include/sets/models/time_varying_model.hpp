@@ -39,8 +39,8 @@ struct TimeVaryingSimulation {
 
 /// Simulates (1) exactly (bilinear in pi and x) from x(0) = x0 with the input u (N x p) and the
 /// perturbation pi (N x q). Throws InputError on mismatched dimensions.
-TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                               const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi);
+TimeVaryingSimulation simulate(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                               const Eigen::Ref<const Eigen::MatrixXd>& u, const Eigen::Ref<const Eigen::MatrixXd>& pi);
 
 /// The stacked biaffine regression Y = Upsilon + Xi Pi + V of equation (4), where
 /// Xi = Omega + Psi + Phi (the D-, P- and Q-terms of equation 3) and Pi = [pi(0); ...; pi(N-1)].
@@ -66,8 +66,8 @@ struct BiaffineRegression {
 
 /// Builds Upsilon and Xi of (3)-(4) for the nominal model, x(0) = x0 and the input u (N x p).
 /// Throws InputError on mismatched dimensions or an empty input.
-BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                                       const Eigen::MatrixXd& u);
+BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                       const Eigen::Ref<const Eigen::MatrixXd>& u);
 
 /// The first-order expansion of (1) in pi around the trajectory pi_bar (N x q), an extension of (2)
 /// for re-linearisation (not in the paper). With x_bar = simulate(pi_bar).x:
@@ -75,12 +75,13 @@ BiaffineRegression biaffine_regression(const TimeVaryingModel& model, const Eige
 ///   block (k, j) of Xi = C A(k-1) ... A(j+1) M_j  (k > j),   Upsilon = C x_bar - Xi Pi_bar,
 /// so y(pi) = Upsilon + Xi Pi + O(|pi - pi_bar|^2). pi_bar = 0 gives biaffine_regression exactly.
 /// Throws InputError on mismatched dimensions or an empty input.
-BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                                         const Eigen::MatrixXd& u, const Eigen::MatrixXd& pi_bar);
+BiaffineRegression linearised_regression(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& pi_bar);
 
 /// Stacks the rows of a signal matrix (one row per sample) into one column: [s(0); s(1); ...].
-Eigen::VectorXd stack_samples(const Eigen::MatrixXd& signal);
+Eigen::VectorXd stack_samples(const Eigen::Ref<const Eigen::MatrixXd>& signal);
 /// The inverse of stack_samples: width entries per sample.
-Eigen::MatrixXd unstack_samples(const Eigen::VectorXd& stacked, int width);
+Eigen::MatrixXd unstack_samples(const Eigen::Ref<const Eigen::VectorXd>& stacked, int width);
 
 }  // namespace sets

@@ -40,8 +40,8 @@ const char* to_string(ResidualNorm n) {
   return "?";
 }
 
-double residual_bound(const CanonicalRegression& r, const Eigen::VectorXd& eps, const LevelSetOptions& o,
-                      int* attaining_row) {
+double residual_bound(const CanonicalRegression& r, const Eigen::Ref<const Eigen::VectorXd>& eps,
+                      const LevelSetOptions& o, int* attaining_row) {
   if (eps.size() != r.y.size()) throw InputError("residual_bound: residual vector has the wrong length");
   double ell = -1;
   int arg = -1;
@@ -128,7 +128,7 @@ CanonicalFps regression_fps(const CanonicalRegression& r, double bound) {
   return regression_fps(r, Eigen::VectorXd::Constant(r.equations, bound));
 }
 
-CanonicalFps regression_fps(const CanonicalRegression& r, const Eigen::VectorXd& bounds) {
+CanonicalFps regression_fps(const CanonicalRegression& r, const Eigen::Ref<const Eigen::VectorXd>& bounds) {
   if (bounds.size() != r.equations) throw InputError("regression_fps: one bound per equation is needed");
   for (int e = 0; e < bounds.size(); ++e)
     if (!(bounds[e] >= 0) || !std::isfinite(bounds[e]))

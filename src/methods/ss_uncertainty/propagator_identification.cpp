@@ -134,7 +134,7 @@ std::vector<std::string> CanonicalStructure::parameter_names() const {
   return names;
 }
 
-StateSpaceModel CanonicalStructure::to_model(const Eigen::VectorXd& theta) const {
+StateSpaceModel CanonicalStructure::to_model(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
   if (theta.size() != count_) throw InputError("canonical structure: wrong number of parameters");
   const int n = nx();
   StateSpaceModel m{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, nu_),
@@ -169,7 +169,8 @@ Eigen::VectorXd CanonicalStructure::to_parameters(const StateSpaceModel& c) cons
   return theta;
 }
 
-int observability_rank(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C, double rel_tol) {
+int observability_rank(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& C,
+                       double rel_tol) {
   const int n = static_cast<int>(A.rows());
   if (A.cols() != n || C.cols() != n) throw InputError("observability_rank: A must be n x n and C p x n");
   Eigen::MatrixXd O(C.rows() * n, n);
@@ -184,8 +185,8 @@ int observability_rank(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C, doubl
   return static_cast<int>((s.array() > rel_tol * s(0)).count());
 }
 
-std::vector<ObservabilityRow> select_rows(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C,
-                                          RowSelection selection) {
+std::vector<ObservabilityRow> select_rows(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& C, RowSelection selection) {
   const int n = static_cast<int>(A.rows());
   const int r = observability_rank(A, C);
   if (r < n)
@@ -236,8 +237,9 @@ StateSpaceModel canonical_form(const StateSpaceModel& s, const std::vector<Obser
   return c;
 }
 
-CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eigen::MatrixXd& states,
-                                         int first, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y) {
+CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eigen::Ref<const Eigen::MatrixXd>& states,
+                                         int first, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& y) {
   const int n = st.nx(), nu = st.nu(), ny = st.ny();
   const int K = static_cast<int>(states.cols());
   if (states.rows() != n || u.cols() != nu || y.cols() != ny || u.rows() != y.rows())
@@ -283,7 +285,7 @@ CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eig
   return r;
 }
 
-Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool with_current) {
+Eigen::MatrixXd past_input_regressor(const Eigen::Ref<const Eigen::MatrixXd>& u, int past, bool with_current) {
   const int N = static_cast<int>(u.rows()), nu = static_cast<int>(u.cols()), p = past;
   if (p < 1 || N <= p) throw InputError("past_input_regressor: need 1 <= p < N");
   Eigen::MatrixXd Z(N - p, nu * p + (with_current ? nu : 0));
@@ -295,8 +297,8 @@ Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool wi
   return Z;
 }
 
-PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                                     const PropagatorOptions& o) {
+PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& y, const PropagatorOptions& o) {
   const int N = static_cast<int>(u.rows());
   const int nu = static_cast<int>(u.cols()), ny = static_cast<int>(y.cols());
   const int n = o.order, p = o.past;

@@ -2,8 +2,8 @@
 
 namespace sets {
 
-SsUncertaintyResult ss_uncertainty(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                                   const SsUncertaintyOptions& options) {
+SsUncertaintyResult ss_uncertainty(const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                   const Eigen::Ref<const Eigen::MatrixXd>& y, const SsUncertaintyOptions& options) {
   SsUncertaintyResult r;
   r.identification = identify_propagator(u, y, options.identification);
   r.estimate_level_set = level_set_domain(r.identification.regression, options.level);

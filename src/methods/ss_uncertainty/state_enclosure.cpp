@@ -212,8 +212,8 @@ void check_bounds(const Eigen::VectorXd& v, Eigen::Index size, const char* what,
 
 }  // namespace
 
-StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                              const GuaranteedSetAssumptions& a) {
+StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                              const Eigen::Ref<const Eigen::MatrixXd>& y, const GuaranteedSetAssumptions& a) {
   const CanonicalStructure& st = id.structure;
   const int n = st.nx(), nu = st.nu(), ny = st.ny(), p = id.first_state;
   const int N = static_cast<int>(u.rows()), K = static_cast<int>(id.states.cols());
@@ -376,8 +376,9 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::MatrixXd&
   return X;
 }
 
-CanonicalFps guaranteed_fps(const PropagatorResult& id, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                            const StateEnclosure& X, const Eigen::VectorXd& noise_bound) {
+CanonicalFps guaranteed_fps(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                            const Eigen::Ref<const Eigen::MatrixXd>& y, const StateEnclosure& X,
+                            const Eigen::Ref<const Eigen::VectorXd>& noise_bound) {
   const CanonicalStructure& st = id.structure;
   const int n = st.nx(), nu = st.nu(), ny = st.ny(), K = static_cast<int>(X.states.cols());
   if (X.states.rows() != n || X.unit_steps.cols() != K - 1 || K < 2 || X.first + K > u.rows() ||

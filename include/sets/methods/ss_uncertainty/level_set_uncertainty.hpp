@@ -56,7 +56,7 @@ struct LevelSetDomain {
 LevelSetDomain level_set_domain(const CanonicalRegression& regression, const LevelSetOptions& options = {});
 
 /// l of a residual vector under the options (exposed for tests and for the FPS bound).
-double residual_bound(const CanonicalRegression& regression, const Eigen::VectorXd& residuals,
+double residual_bound(const CanonicalRegression& regression, const Eigen::Ref<const Eigen::VectorXd>& residuals,
                       const LevelSetOptions& options, int* attaining_row = nullptr);
 
 /// The feasible parameter set of the same regression with |y_M - Psi theta| <= bound on every
@@ -65,7 +65,7 @@ double residual_bound(const CanonicalRegression& regression, const Eigen::Vector
 /// the bound holds at the truth: with l read from the residuals it is an estimate.
 CanonicalFps regression_fps(const CanonicalRegression& regression, double bound);
 /// The same with a bound per equation (bounds[e] for the rows of equation e).
-CanonicalFps regression_fps(const CanonicalRegression& regression, const Eigen::VectorXd& bounds);
+CanonicalFps regression_fps(const CanonicalRegression& regression, const Eigen::Ref<const Eigen::VectorXd>& bounds);
 
 /// The 2-D views of an ellipsoid for the parameters (i, j): the exact projection (shadow) and
 /// the exact slice through the centre (every other parameter at its estimate).

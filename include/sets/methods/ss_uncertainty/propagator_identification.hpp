@@ -55,7 +55,7 @@ class CanonicalStructure {
   /// theta~ = [free rows of A_c (row-major); free rows of C_c; B_c (row-major); D_c (row-major)].
   int parameter_count() const;
   std::vector<std::string> parameter_names() const;
-  StateSpaceModel to_model(const Eigen::VectorXd& theta) const;
+  StateSpaceModel to_model(const Eigen::Ref<const Eigen::VectorXd>& theta) const;
   /// Reads the free entries of a model already in this canonical form.
   Eigen::VectorXd to_parameters(const StateSpaceModel& canonical) const;
 
@@ -74,11 +74,12 @@ class CanonicalStructure {
 };
 
 /// Rank of the observability matrix [C; CA; ...; CA^{n-1}] (SVD, relative tolerance).
-int observability_rank(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C, double rel_tol = 1e-10);
+int observability_rank(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& C,
+                       double rel_tol = 1e-10);
 
 /// Rows chosen by `selection` on a known system: throws InputError when (A, C) is not observable.
-std::vector<ObservabilityRow> select_rows(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C,
-                                          RowSelection selection);
+std::vector<ObservabilityRow> select_rows(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                          const Eigen::Ref<const Eigen::MatrixXd>& C, RowSelection selection);
 
 /// The canonical form of a known system under a row selection (T = Gamma_1: A_c = T A T^-1,
 /// B_c = T B, C_c = C T^-1, D_c = D). Throws InputError if (A, C) is not observable or the
@@ -100,12 +101,13 @@ struct CanonicalRegression {
 /// Builds the regression from a state sequence: states.col(k) = x(first + k), k = 0..K-1;
 /// u and y are N x nu and N x ny (time along rows). Uses t = first .. first+K-2.
 CanonicalRegression canonical_regression(const CanonicalStructure& structure,
-                                         const Eigen::MatrixXd& states, int first,
-                                         const Eigen::MatrixXd& u, const Eigen::MatrixXd& y);
+                                         const Eigen::Ref<const Eigen::MatrixXd>& states, int first,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& y);
 
 /// The regressor of step 1: row k = [u_p(t)^T, u(t)^T] for t = p + k, k = 0..N-p-1, with
 /// u_p(t) = [u(t-p); ...; u(t-1)] and the u(t) block only `with_current` (D estimated).
-Eigen::MatrixXd past_input_regressor(const Eigen::MatrixXd& u, int past, bool with_current);
+Eigen::MatrixXd past_input_regressor(const Eigen::Ref<const Eigen::MatrixXd>& u, int past, bool with_current);
 
 struct PropagatorOptions {
   int order = 0;                      // n_x
@@ -135,8 +137,8 @@ struct PropagatorResult {
 /// Identifies a model from input/output data u (N x nu) and y (N x ny), time along rows.
 /// Throws InputError for p < n_x, too few samples, constant or non-exciting inputs, an order the
 /// data do not support (rank of Gamma_p K^ below n_x) and dependent user rows.
-PropagatorResult identify_propagator(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                                     const PropagatorOptions& options);
+PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& y, const PropagatorOptions& options);
 
 std::string to_string(const ObservabilityRow& row);  // "y1[t+0]" (1-based output)
 

@@ -48,7 +48,7 @@ struct SsUncertaintyResult {
 /// Identifies a canonical model from u (N x nu) and y (N x ny), time along rows, and computes
 /// its uncertainty domains. Throws InputError for data or options the method cannot use (see
 /// identify_propagator and level_set_domain).
-SsUncertaintyResult ss_uncertainty(const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                                   const SsUncertaintyOptions& options);
+SsUncertaintyResult ss_uncertainty(const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                   const Eigen::Ref<const Eigen::MatrixXd>& y, const SsUncertaintyOptions& options);
 
 }  // namespace sets

@@ -58,15 +58,16 @@ struct StateEnclosure {
 /// Encloses the true canonical states under the assumptions. u (N x nu), y (N x ny) are the data
 /// id was identified from. Throws InputError for bounds of the wrong size, negative or not
 /// finite, or neither tail_bound nor state_error_bound given.
-StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                              const GuaranteedSetAssumptions& assumptions);
+StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                              const Eigen::Ref<const Eigen::MatrixXd>& y, const GuaranteedSetAssumptions& assumptions);
 
 /// The regression of Remark 1 with the states replaced by their enclosures (interval regressors),
 /// the unit rows of A_c by the unit steps and the output rows bounded by the noise bound: the
 /// feasible parameter set that contains the true theta~ whenever the assumptions hold (it is
 /// empty, with falsified rows, when the data contradict them).
-CanonicalFps guaranteed_fps(const PropagatorResult& id, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
-                            const StateEnclosure& states, const Eigen::VectorXd& noise_bound);
+CanonicalFps guaranteed_fps(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                            const Eigen::Ref<const Eigen::MatrixXd>& y, const StateEnclosure& states,
+                            const Eigen::Ref<const Eigen::VectorXd>& noise_bound);
 
 /// For a known system (simulation studies): an upper bound on |r_j(t)| for every output j when
 /// x(0) = 0 and |u| <= input_bound: sum_{k >= p} ||C_j A^k B||_1 input_bound (summed until the
