@@ -118,8 +118,9 @@ std::string suite_report(const std::vector<SuitePlantResult>& results, bool tabl
   std::ostringstream o;
   o << std::fixed << std::setprecision(1);
   if (table) {
-    o << "| plant | family | true effects (where, strength) | named (where) | answer | first right | all named | fit val: nominal -> augmented | s |\n"
-         "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    o << "| plant | family | true effects (where, strength) | named (where) | answer | first right | all named | fit val: nominal -> augmented | "
+         "noise est/true | true values inside | s |\n"
+         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const auto& r : results) {
       std::string truth, named;
       for (const auto& t : r.truth) {
@@ -132,7 +133,11 @@ std::string suite_report(const std::vector<SuitePlantResult>& results, bool tabl
       for (std::size_t k = 0; k < r.named.size(); ++k) named += (k ? ", " : "") + r.named[k] + " (" + r.places[k] + ")";
       o << "| " << r.name << " | " << r.family << " | " << (truth.empty() ? "none" : truth) << " | " << (named.empty() ? "none" : named)
         << " | " << (r.error.empty() ? r.answer : "error: " + r.error) << " | " << (r.first_right() ? "yes" : "**no**") << " | "
-        << (r.all_named() ? "yes" : "**no**") << " | " << r.fit_nominal << " -> " << r.fit_augmented << " | " << r.seconds << " |\n";
+        << (r.all_named() ? "yes" : "**no**") << " | " << r.fit_nominal << " -> " << r.fit_augmented << " | ";
+      for (std::size_t j = 0; j < r.noise_ratio.size(); ++j) o << (j ? ", " : "") << std::setprecision(2) << r.noise_ratio[j];
+      int inside = 0;
+      for (const auto& c : r.coverage) inside += c.inside;
+      o << std::setprecision(1) << " | " << inside << " of " << r.coverage.size() << " | " << r.seconds << " |\n";
     }
     o << "\n";
   }
@@ -191,7 +196,8 @@ std::string suite_report(const std::vector<SuitePlantResult>& results, bool tabl
     auto q = [&](double f) { return ratios[static_cast<std::size_t>(f * static_cast<double>(ratios.size() - 1))]; };
     int within = 0;
     for (double x : ratios) within += x >= 0.5 && x <= 2;
-    o << std::setprecision(2) << "- estimated / true noise level: median " << q(0.5) << ", 10 % " << q(0.1) << ", 90 % " << q(0.9)
+    o << std::setprecision(2) << "- estimated / true noise level (" << ratios.size() << " outputs): median " << q(0.5)
+      << ", 10 % " << q(0.1) << ", 90 % " << q(0.9) << ", lowest " << ratios.front() << ", highest " << ratios.back()
       << "; within a factor 2: " << pct(within, static_cast<int>(ratios.size())) << "\n" << std::setprecision(1);
   }
   o << "\nConfusion matrix (one-effect and clean plants; rows: true effect, columns: first named):\n\n| true \\ named |";
