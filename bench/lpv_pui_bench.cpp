@@ -30,7 +30,7 @@ void BM_LpvPui(benchmark::State& state) {
   int lps = 0, orthants = 0;
   for (auto _ : state) {
     const auto r = sets::pui(fps, opt);
-    if (r.empty || !r.guaranteed) state.SkipWithError("PUI empty or not certified");
+    if (r.empty() || !r.guaranteed) state.SkipWithError("PUI empty or not certified");
     lps = r.lp_solves;
     orthants = static_cast<int>(r.orthants.size());
     benchmark::DoNotOptimize(r.box.data());

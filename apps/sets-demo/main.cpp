@@ -54,10 +54,11 @@ int main(int argc, char** argv) {
 
     std::cout << "sets-demo: ARX(2,2) system, N = " << N << " samples, |noise| <= " << noise
               << " on y (errors in variables)\n\n";
-    if (r.empty) {
-      std::cout << r.falsification.message() << '\n';
+    if (r.empty()) {
+      std::cout << r.consistency.message() << '\n';
       return int(sets::exit_falsified);
     }
+    if (r.consistency.falsified == sets::Falsified::unknown) std::cout << "Note: " << r.consistency.message() << "\n";
     const char* names[] = {"a1", "a2", "b1", "b2"};
     std::cout << std::fixed << std::setprecision(5);
     std::cout << "  param      true     PUI lower     PUI upper    half-width  inside\n";

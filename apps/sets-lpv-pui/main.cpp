@@ -44,13 +44,15 @@ int run_data(const std::string& path, const std::string& ucol, const std::string
   std::cout << "sets-lpv-pui: " << path << ", " << d.u.size() << " samples, " << res.regression.Phi.rows()
             << " regressions, " << names.size() << " parameters, |eta| <= " << delta_eta << ", |eps| <= " << delta_eps
             << '\n';
-  if (res.pui.empty) {
+  if (res.pui.consistency.falsified == sets::Falsified::unknown)
+    std::cerr << "sets-lpv-pui: note: " << res.pui.consistency.message() << '\n';
+  if (res.pui.empty()) {
     std::cerr << "sets-lpv-pui: the data falsify the model: no parameter value satisfies all samples with these "
                  "bounds.\n  Conflicting samples (0-based index, file line: violation of the best compromise, in units "
                  "of y):";
     for (std::size_t i = 0; i < res.falsifying_times.size(); ++i)
       std::cerr << "\n    sample " << res.falsifying_times[i] << " (line " << res.falsifying_times[i] + 2
-                << "): " << res.pui.falsification.violation[i];
+                << "): " << res.pui.consistency.conflict.violation[i];
     std::cerr << "\n  Check these samples, or widen --delta-eta / --delta-eps, or change the model structure.\n";
     return int(sets::exit_falsified);
   }

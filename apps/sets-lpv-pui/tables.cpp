@@ -46,7 +46,7 @@ RunResult simulate_and_bound(const Setting& s, int run, const TableRuns& tr) {
   const auto t0 = std::chrono::steady_clock::now();
   const sets::LpvPuiResult res = sets::unreliable_lpv_pui(model, e.data, tr.regressor_errors, tr.options);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.empty = res.pui.empty;
+  r.empty = res.pui.empty();
   r.guaranteed = res.pui.guaranteed;
   r.lps = res.pui.lp_solves;
   r.orthants = static_cast<int>(res.pui.orthants.size());

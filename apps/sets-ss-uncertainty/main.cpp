@@ -44,10 +44,11 @@ int real_data(const Settings& st) {
   for (const auto& r : id.rows) std::cout << ' ' << sets::to_string(r);
   std::cout << "\n  l = " << dom.ell << " (residuals " << sets::to_string(st.level.residuals) << ", "
             << sets::to_string(st.level.norm) << "), J_min = " << dom.j_min << ", J_D = " << dom.j_d << "\n\n";
-  if (p.empty) {
-    std::cout << "The feasible parameter set with |eps| <= l is empty: " << p.falsification.message() << '\n';
+  if (p.empty()) {
+    std::cout << "The feasible parameter set with |eps| <= l is empty: " << p.consistency.message() << '\n';
     return int(sets::exit_falsified);
   }
+  if (p.consistency.falsified == sets::Falsified::unknown) std::cout << "Note: " << p.consistency.message() << "\n";
   std::cout << "  param        estimate     ellipsoid box (not guaranteed)       FPS PUI (holds only if |eps| <= l at the truth)\n";
   sets::app::Json jp = sets::app::Json::array();
   for (int i = 0; i < id.theta.size(); ++i) {

@@ -113,8 +113,8 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
   if (result.estimate_fps_pui) {  // one LP, created and destroyed on this thread
     const auto& p = *result.estimate_fps_pui;
     r.pui_done = true;
-    r.fps_pui = p.empty ? outside : (sets::contains(p.box, truth) ? inside : outside);
-    r.pui_halfwidth = p.empty ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
+    r.fps_pui = p.empty() ? outside : (sets::contains(p.box, truth) ? inside : outside);
+    r.pui_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
   }
   r.assumption_held = (data.largest_noise.array() <= vbar.array()).all();
   if (result.guaranteed_fps) {
@@ -128,8 +128,8 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
   if (result.guaranteed_pui) {
     const auto& p = *result.guaranteed_pui;
     r.g_pui_done = true;
-    r.g_pui = p.empty ? outside : (sets::contains(p.box, truth) ? inside : outside);
-    r.g_halfwidth = p.empty ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
+    r.g_pui = p.empty() ? outside : (sets::contains(p.box, truth) ? inside : outside);
+    r.g_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : sets::radius(p.box);
   }
   return r;
 }

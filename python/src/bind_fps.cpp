@@ -73,16 +73,20 @@ void bind_pui_result(py::module_& m) {
   py::class_<PuiResult>(m, "PuiResult", "Parameter uncertainty intervals and how far they can be trusted.")
       .def_readonly("box", &PuiResult::box, "the PUIs [theta_min, theta_max] as a Box")
       .def_readonly("central", &PuiResult::central, "centre of the box (Cerone–Regruto eqs. 41-42)")
-      .def_readonly("empty", &PuiResult::empty, "True when the data falsify the model (see `falsification`)")
+      .def_property_readonly("empty", &PuiResult::empty,
+                             "True only when the data are certified to falsify the model (consistency.falsified == yes)")
+      .def_readonly("consistency", &PuiResult::consistency, "do the data falsify the model? no / yes / unknown")
       .def_readonly("guaranteed", &PuiResult::guaranteed,
                     "True when every finite end is certified by a safe bound (the box is a rigorous outer bound)")
       .def_readonly("orthants", &PuiResult::orthants)
       .def_readonly("lower_points", &PuiResult::lower_points, "column l: a feasible point attaining theta_l^min")
       .def_readonly("upper_points", &PuiResult::upper_points, "column l: a feasible point attaining theta_l^max")
-      .def_readonly("falsification", &PuiResult::falsification, "the conflicting samples, when empty")
+      .def_property_readonly(
+          "falsification", [](const PuiResult& r) { return r.consistency.conflict; },
+          "the conflicting samples (a proof when empty; an estimate when consistency is unknown)")
       .def_readonly("lp_solves", &PuiResult::lp_solves)
       .def("__repr__", [](const PuiResult& r) {
-        if (r.empty) return "PuiResult(empty: " + r.falsification.message() + ")";
+        if (r.empty()) return "PuiResult(empty: " + r.consistency.message() + ")";
         std::string s = "PuiResult(guaranteed=" + std::string(r.guaranteed ? "True" : "False") + ", box=[";
         for (Eigen::Index i = 0; i < r.box.size(); ++i) s += (i ? ", " : "") + to_string(r.box[i]);
         return s + "])";
@@ -90,7 +94,9 @@ void bind_pui_result(py::module_& m) {
 }
 
 void bind_support_verdict(py::class_<FpsSupport>& c) {
-  c.def_readonly("empty", &FpsSupport::empty).def_readonly("falsification", &FpsSupport::falsification);
+  c.def_property_readonly("empty", &FpsSupport::empty)
+      .def_readonly("consistency", &FpsSupport::consistency)
+      .def_property_readonly("falsification", [](const FpsSupport& r) { return r.consistency.conflict; });
 }
 
 void bind_pui(py::module_& m) {
@@ -127,6 +133,18 @@ void bind_pui(py::module_& m) {
       .def_readonly("violation", &Falsification::violation, "how far the best compromise violates each, output units")
       .def("message", &Falsification::message)
       .def("__repr__", &Falsification::message);
+  py::enum_<Falsified>(m, "Falsified", "Do the data falsify the model? yes/no only when certified.")
+      .value("no", Falsified::no)
+      .value("yes", Falsified::yes)
+      .value("unknown", Falsified::unknown);
+  py::class_<ConsistencyVerdict>(m, "ConsistencyVerdict", "The three-valued verdict and, when not certified, why.")
+      .def_readonly("falsified", &ConsistencyVerdict::falsified)
+      .def_readonly("conflict", &ConsistencyVerdict::conflict)
+      .def_readonly("reason", &ConsistencyVerdict::reason)
+      .def("certified_falsified", &ConsistencyVerdict::certified_falsified)
+      .def("certified_consistent", &ConsistencyVerdict::certified_consistent)
+      .def("message", &ConsistencyVerdict::message)
+      .def("__repr__", &ConsistencyVerdict::message);
   bind_pui_result(m);
   m.def("pui", &pui, py::arg("fps"), py::arg("options") = PuiOptions{}, release_gil(),
         "Parameter uncertainty intervals: a box containing the FPS (the part reached by the chosen\n"

@@ -403,7 +403,7 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
     PuiOptions po;
     po.orthants = p <= 5 ? OrthantSelection::all : OrthantSelection::remark2;
     const PuiResult pr = pui(FeasibleParameterSet::from_interval_data(Phi, Y), po);
-    if (pr.empty) {
+    if (pr.empty()) {
       if (!res.built)
         res.note = "equation-error PUI not built for \"" + state + "\": the strips are inconsistent under the bound (the model is falsified there)";
       continue;

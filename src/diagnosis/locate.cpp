@@ -61,7 +61,7 @@ std::vector<MismatchWindow> mismatch_windows(const Simulator& exact, const Eigen
         mw.falsified = yy.cwiseAbs().maxCoeff() > bound;
       } else {
         auto fps = FeasibleParameterSet::from_data(Phi, yy, dd);
-        mw.falsified = !find_conflict(fps).samples.empty();
+        mw.falsified = check_consistency(fps).certified_falsified();  // certified only
       }
       ws.push_back(mw);
       k = e + 1;

@@ -90,7 +90,7 @@ OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eige
   }
   try {
     const PuiResult pr = pui(FeasibleParameterSet::from_data(Phi, yy, dd));
-    if (pr.empty) {
+    if (pr.empty()) {
       out.note = "the linearised strips were found inconsistent, no PUI";
       return out;
     }

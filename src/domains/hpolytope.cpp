@@ -9,6 +9,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/numeric/lp_certificate.hpp"
 #include "numeric/certified_extent.hpp"
 #include "numeric/verified_linear_algebra.hpp"
 
@@ -131,16 +132,7 @@ std::vector<double> safe_maxima(const HPolytope& P, const std::vector<Eigen::Vec
 BoolInterval is_empty(const HPolytope& P) {
   if (P.num_constraints() == 0) return BoolInterval::no;
   LinearProgram lp = make_lp(P);
-  lp.set_objective(Eigen::VectorXd::Zero(P.dimension()), Sense::minimize);
-  try {
-    const LpSolution sol = lp.solve();
-    if (sol.status == LpStatus::optimal && contains(P, sol.x) == BoolInterval::yes) return BoolInterval::no;
-    lp.reset_basis();
-    const LpSolution ex = lp.solve_exact();
-    return ex.status == LpStatus::infeasible ? BoolInterval::yes : BoolInterval::no;
-  } catch (const NumericalError&) {
-    return BoolInterval::unknown;
-  }
+  return certified_is_empty(lp);  // exact certificates either way, else unknown
 }
 
 IntervalVector outer_box(const HPolytope& P) {

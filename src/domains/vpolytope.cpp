@@ -6,6 +6,7 @@
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/numeric/lp_certificate.hpp"
 #include "numeric/verified_linear_algebra.hpp"
 
 namespace sets {
@@ -33,20 +34,15 @@ double support(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& d) {
 BoolInterval contains(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (x.size() != V.dimension()) throw InputError("contains: point has the wrong dimension");
   if (!x.allFinite()) throw InputError("contains: point has a NaN or infinite entry");
-  // x = V lambda, sum lambda = 1, lambda >= 0: the data are doubles, so the exact simplex decides.
-  const int n = V.dimension(), k = V.num_points();
+  // x = V lambda, sum lambda = 1, lambda >= 0: the data are doubles, so the question has an
+  // exact answer; it is given only with an exact certificate (a lambda solved in rationals, or
+  // a Farkas certificate of the system's emptiness), else unknown.
+  const int k = V.num_points();
   LinearProgram lp;
   lp.add_variables(k, 0.0, inf);
   lp.add_rows(V.points(), x, x);
   lp.add_row(Eigen::VectorXd::Ones(k), 1.0, 1.0);
-  lp.set_objective(Eigen::VectorXd::Zero(k), Sense::minimize);
-  (void)n;
-  try {
-    const LpSolution sol = lp.solve_exact();
-    return sol.status == LpStatus::infeasible ? BoolInterval::no : BoolInterval::yes;
-  } catch (const NumericalError&) {
-    return BoolInterval::unknown;
-  }
+  return !certified_is_empty(lp);
 }
 
 VPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V) {

@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/numeric/lp_certificate.hpp"
 #include "numeric/certified_extent.hpp"
 
 namespace sets {
@@ -224,6 +227,33 @@ class OrthantLp {
   LinearProgram& lp() { return lp_; }
   bool complete() const { return added_ == static_cast<int>(in_.size()); }
 
+  /// Every sample's rows (as add_sample would add them), for exact checks on the full set.
+  LpRows all_rows() const {
+    LpRows r;
+    const auto row = [](const Eigen::VectorXd& a) {
+      std::vector<std::pair<int, double>> e;
+      for (Eigen::Index j = 0; j < a.size(); ++j)
+        if (a[j] != 0) e.emplace_back(static_cast<int>(j), a[j]);
+      return e;
+    };
+    for (Eigen::Index t = 0; t < lo_.rows(); ++t) {
+      const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
+      if (lo_row == hi_row) {
+        r.entries.push_back(row(lo_row));
+        r.lo.push_back(ylo_[t]);
+        r.hi.push_back(yhi_[t]);
+      } else {
+        r.entries.push_back(row(lo_row));
+        r.lo.push_back(-inf);
+        r.hi.push_back(yhi_[t]);
+        r.entries.push_back(row(hi_row));
+        r.lo.push_back(ylo_[t]);
+        r.hi.push_back(inf);
+      }
+    }
+    return r;
+  }
+
   /// Solves the current objective over the full set: re-solves after adding violated samples.
   LpSolution solve(int& lps) {
     for (;;) {
@@ -286,8 +316,40 @@ struct OrthantOutcome {
   Eigen::MatrixXd lower_points, upper_points;
   std::vector<double> maxima;          // bounds on max d^T theta over this orthant piece
   bool certified = false;
+  bool witness = false;                // a point of the piece proven to satisfy every sample
   int lps = 0;
 };
+
+// The orthant itself as a box: an outer bound of whatever part of the set lies in it.
+IntervalVector orthant_box(const Orthant& s, int p) {
+  IntervalVector box(p);
+  for (int j = 0; j < p; ++j) {
+    const int sign = s.empty() ? 0 : s[static_cast<std::size_t>(j)];
+    box[j] = sign > 0 ? Interval(0.0, inf) : sign < 0 ? Interval(-inf, 0.0) : Interval(-inf, inf);
+  }
+  return box;
+}
+
+// The centre of a large ball inside the orthant piece (floating-point LP, a search aid only: the
+// caller proves membership). The radius is capped so that an unbounded piece still gives a point.
+std::optional<Eigen::VectorXd> inscribed_centre(const FeasibleParameterSet& fps, const Orthant& s) {
+  const HPolytope P = fps.orthant_polytope(s);
+  const int n = P.dimension();
+  LinearProgram lp(n);
+  const int r = lp.add_variables(1, 0.0, 1.0);
+  Eigen::VectorXd row(n + 1);
+  for (int i = 0; i < P.num_constraints(); ++i) {
+    row << P.A().row(i).transpose(), P.A().row(i).norm();
+    lp.add_row(row, -inf, P.b()[i]);
+  }
+  lp.set_objective_coordinate(r, Sense::maximize);
+  try {
+    const LpSolution sol = lp.solve();
+    if (sol.status == LpStatus::optimal && sol.x[r] > 0) return Eigen::VectorXd(sol.x.head(n));
+  } catch (const NumericalError&) {
+  }
+  return std::nullopt;
+}
 
 OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
                              const std::vector<Eigen::VectorXd>& directions) {
@@ -309,6 +371,31 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   out.maxima = e.maxima;
   out.certified = e.certified;
   out.box = make_box(e.lo, e.hi);
+  // A witness of consistency: the mean of the 2p extreme points lies in the (convex) orthant
+  // piece if they do, and is usually interior, so outward rounding can prove it. (A flat set, e.g. delta = 0, has no interior: then no witness, and the verdict is
+  // unknown unless another orthant has one.)
+  // The centre of the orthant's PUI box is a second candidate (inside when the piece is not
+  // too skewed).
+  const Eigen::VectorXd mean = 0.5 * (e.lower_points.rowwise().mean() + e.upper_points.rowwise().mean());
+  const Eigen::VectorXd centre = 0.5 * (e.float_lo + e.float_hi);
+  for (const Eigen::VectorXd& x : {mean, centre})
+    if (!out.witness && x.allFinite()) out.witness = fps.contains(x) == BoolInterval::yes;
+  if (!out.witness) {  // skewed piece, or ends not computed (support only): its inscribed ball's centre
+    const std::optional<Eigen::VectorXd> x = inscribed_centre(fps, s);
+    out.witness = x && fps.contains(*x) == BoolInterval::yes;
+  }
+  if (!out.witness) {
+    // Thin or flat pieces: the vertex an LP ended on, solved exactly from its active samples,
+    // is a point of the piece when the LP's active set is right.
+    const LpRows rows = o.all_rows();
+    Eigen::VectorXd col_lo(fps.dimension()), col_hi(fps.dimension());
+    for (int j = 0; j < fps.dimension(); ++j) {
+      col_lo[j] = s.empty() || s[static_cast<std::size_t>(j)] > 0 ? (s.empty() ? -inf : 0.0) : -inf;
+      col_hi[j] = s.empty() || s[static_cast<std::size_t>(j)] < 0 ? (s.empty() ? inf : 0.0) : inf;
+    }
+    for (const Eigen::VectorXd& x : {Eigen::VectorXd(e.lower_points.col(0)), Eigen::VectorXd(e.upper_points.col(0))})
+      if (!out.witness && x.allFinite()) out.witness = verify_feasible_point(rows, col_lo, col_hi, x);
+  }
   return out;
 }
 
@@ -356,38 +443,47 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
                        std::to_string(p));
   maxima.assign(directions.size(), -inf);
   PuiResult result;
-  result.lower_points.resize(p, p);
-  result.upper_points.resize(p, p);
-  bool any_feasible = false;
+  result.lower_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
+  result.upper_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
+  bool any_feasible = false;  // some orthant gave floating-point LP points
+  bool have_box = false;      // some orthant contributed to result.box
   bool all_certified = true;
+  int unknown_orthants = 0, empty_orthants = 0;
 
-  auto absorb = [&](const Orthant& s, const OrthantOutcome& oc) {
+  auto absorb = [&](const Orthant& s, OrthantOutcome oc) {
     result.lp_solves += oc.lps;
-    result.orthants.push_back({s, oc.status, oc.box});
     if (oc.status == OrthantStatus::unknown) {
-      all_certified = false;
-      maxima.assign(directions.size(), inf);  // an orthant we could not decide: no bound
+      // Undecided: never counted as empty. The orthant itself bounds whatever lies in it.
+      ++unknown_orthants;
+      oc.box = orthant_box(s, p);
+      maxima.assign(directions.size(), inf);
     }
+    if (oc.status == OrthantStatus::empty) ++empty_orthants;
+    result.orthants.push_back({s, oc.status, oc.box, oc.witness});
+    if (oc.status == OrthantStatus::empty) return;
+    result.box = have_box ? hull(result.box, oc.box) : oc.box;
+    have_box = true;
     if (oc.status != OrthantStatus::feasible) return;
     for (std::size_t k = 0; k < directions.size(); ++k) maxima[k] = std::max(maxima[k], oc.maxima[k]);
     all_certified = all_certified && (oc.certified || !options.safe);
     for (int l = 0; l < p; ++l) {
-      if (!any_feasible || oc.box[l].lower() < result.box[l].lower())
+      if (!any_feasible || oc.box[l].lower() <= result.box[l].lower())
         result.lower_points.col(l) = oc.lower_points.col(l);
-      if (!any_feasible || oc.box[l].upper() > result.box[l].upper())
+      if (!any_feasible || oc.box[l].upper() >= result.box[l].upper())
         result.upper_points.col(l) = oc.upper_points.col(l);
     }
-    result.box = any_feasible ? hull(result.box, oc.box) : oc.box;
     any_feasible = true;
   };
 
+  bool searched_everywhere = true;  // every orthant that may hold part of the set was visited
   if (!fps.has_interval_regressors()) {
     absorb({}, solve_orthant(fps, {}, options, directions));
   } else if (options.orthants == OrthantSelection::all) {
     for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options, directions));
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
-    // (theta_l = 0), the set may continue into the orthant across that face.
+    // (theta_l = 0), the set may continue into the orthant across that face. An undecided
+    // orthant may touch every face.
     std::deque<Orthant> queue{sign_orthant(fps, fps.least_squares())};
     std::set<Orthant> seen{queue.front()};
     while (!queue.empty()) {
@@ -395,36 +491,69 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
       queue.pop_front();
       const OrthantOutcome oc = solve_orthant(fps, s, options, directions);
       absorb(s, oc);
-      if (oc.status != OrthantStatus::feasible) continue;
+      if (oc.status == OrthantStatus::empty) continue;
       double scale = 1;
-      for (int j = 0; j < p; ++j) {
-        if (std::isfinite(oc.float_lo[j])) scale = std::max(scale, std::abs(oc.float_lo[j]));
-        if (std::isfinite(oc.float_hi[j])) scale = std::max(scale, std::abs(oc.float_hi[j]));
+      if (oc.status == OrthantStatus::feasible) {
+        for (int j = 0; j < p; ++j) {
+          if (std::isfinite(oc.float_lo[j])) scale = std::max(scale, std::abs(oc.float_lo[j]));
+          if (std::isfinite(oc.float_hi[j])) scale = std::max(scale, std::abs(oc.float_hi[j]));
+        }
       }
       const double tol = options.zero_tolerance * scale;
       for (int j = 0; j < p; ++j) {
         if (s[static_cast<std::size_t>(j)] == 0) continue;  // free: no face at theta_j = 0
-        const bool touches = s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol;
+        const bool touches = oc.status == OrthantStatus::unknown ||
+                             (s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol);
         if (!touches) continue;
         Orthant next = s;
         next[static_cast<std::size_t>(j)] = -next[static_cast<std::size_t>(j)];
         if (seen.insert(next).second) queue.push_back(next);
       }
     }
-    // An empty starting orthant says nothing about the others: fall back to all of them.
-    if (!any_feasible && p <= 16) {
-      for (const Orthant& s : all_orthants(p))
-        if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options, directions));
+    // A certified-empty starting orthant says nothing about the others: search all of them.
+    if (!have_box) {
+      if (p <= 16) {
+        for (const Orthant& s : all_orthants(p))
+          if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options, directions));
+      } else {
+        searched_everywhere = false;
+      }
     }
   }
 
-  result.empty = !any_feasible;
-  if (result.empty) {
+  const bool any_witness =
+      std::any_of(result.orthants.begin(), result.orthants.end(), [](const OrthantReport& o) { return o.witness; });
+  ConsistencyVerdict& verdict = result.consistency;
+  if (any_witness) {
+    verdict.falsified = Falsified::no;
+  } else if (!have_box && searched_everywhere) {
+    verdict.falsified = Falsified::yes;
+  } else {
+    verdict.falsified = Falsified::unknown;
+    if (unknown_orthants > 0)
+      verdict.reason = std::to_string(unknown_orthants) + (unknown_orthants == 1 ? " orthant" : " orthants") +
+                       " of the parameter space had no feasible point in floating point, but no certificate of "
+                       "emptiness could be verified";
+    else if (!searched_everywhere)
+      verdict.reason = "the least-squares orthant is empty and the other 2^" + std::to_string(p) +
+                       " orthants were not searched";
+    else
+      verdict.reason = "the LPs found parameter values, but none could be proven to satisfy every sample "
+                       "(the set may be flat, or empty within rounding)";
+  }
+  if (verdict.falsified != Falsified::no && (unknown_orthants > 0 || verdict.falsified == Falsified::yes)) {
+    try {
+      verdict.conflict = find_conflict(fps);  // a report; the verdict does not rest on it
+    } catch (const NumericalError&) {
+    }
+  }
+  if (verdict.falsified == Falsified::yes) {
     result.box = IntervalVector();
-    result.guaranteed = all_certified;
-    result.falsification = find_conflict(fps);
+    result.guaranteed = true;
+    maxima.assign(directions.size(), -inf);
     return result;
   }
+  if (!have_box) result.box = orthant_box({}, p);  // nothing searched could bound the rest
   result.guaranteed = options.safe && all_certified;
   result.central = midpoint(result.box);
   return result;
@@ -441,13 +570,17 @@ FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::Vec
                    const PuiOptions& options) {
   FpsSupport out;
   PuiResult r = explore(fps, options, directions, out.maxima, "support");
-  out.empty = r.empty;
+  out.consistency = std::move(r.consistency);
   out.guaranteed = r.guaranteed;
-  out.falsification = std::move(r.falsification);
   out.box = std::move(r.box);
   out.lp_solves = r.lp_solves;
-  if (out.empty) out.maxima.assign(directions.size(), -inf);
   return out;
+}
+
+ConsistencyVerdict check_consistency(const FeasibleParameterSet& fps, const PuiOptions& options) {
+  PuiOptions o = options;
+  o.safe = false;  // the verdict does not need certified bounds
+  return pui(fps, o).consistency;
 }
 
 Falsification find_conflict(const FeasibleParameterSet& fps) {
@@ -493,16 +626,6 @@ Falsification find_conflict(const FeasibleParameterSet& fps) {
     f.violation.push_back(v);
   }
   return f;
-}
-
-std::string Falsification::message() const {
-  std::ostringstream os;
-  os << "the data falsify the model: no parameter value satisfies all samples";
-  if (!samples.empty()) {
-    os << "; these samples conflict (sample: violation of the best compromise):";
-    for (std::size_t i = 0; i < samples.size(); ++i) os << ' ' << samples[i] << ": " << violation[i];
-  }
-  return os.str();
 }
 
 const char* to_string(OrthantStatus s) {

@@ -19,7 +19,9 @@ Zonotope outer_zonotope(const FeasibleParameterSet& fps, const FpsZonotopeOption
       throw InputError("outer_zonotope: initial zonotope has the wrong dimension");
   } else {
     const PuiResult r = pui(fps);
-    if (r.empty) throw EmptySetError("outer_zonotope: the data falsify the model: " + r.falsification.message());
+    if (r.empty()) throw EmptySetError("outer_zonotope: " + r.consistency.message());
+    if (r.consistency.falsified == Falsified::unknown && !(lower(r.box).allFinite() && upper(r.box).allFinite()))
+      throw NumericalError("outer_zonotope: " + r.consistency.message());
     for (int i = 0; i < fps.dimension(); ++i)
       if (!std::isfinite(r.box[i].lower()) || !std::isfinite(r.box[i].upper()))
         throw InputError("outer_zonotope: parameter " + std::to_string(i) +

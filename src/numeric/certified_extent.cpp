@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sets/numeric/lp_certificate.hpp"
+
 namespace sets::detail {
 
 namespace {
@@ -81,12 +83,10 @@ Extent certified_extent(LinearProgram& lp, const SolveOverSet& solve, const std:
       lp.set_objective_coordinate(l, sense);
       const LpSolution& sol = phase1[static_cast<std::size_t>(2 * l + !lower)] = solve(e.lps);
       if (sol.status == LpStatus::infeasible) {
-        // Certify emptiness with exact rational arithmetic. (With row generation the LP is a
-        // relaxation: if it is empty, so is the set.)
-        lp.reset_basis();
-        const LpSolution exact = lp.solve_exact();
+        // Empty only with a Farkas certificate checked in exact arithmetic. (With row
+        // generation the LP is a relaxation: if it is empty, so is the set.)
         ++e.lps;
-        e.status = exact.status == LpStatus::infeasible ? ExtentStatus::empty : ExtentStatus::unknown;
+        e.status = prove_infeasible(lp) ? ExtentStatus::empty : ExtentStatus::unknown;
         return e;
       }
       const double end = sol.status == LpStatus::unbounded ? (lower ? -inf : inf) : sol.objective;

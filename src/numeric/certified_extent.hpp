@@ -39,7 +39,8 @@ using SolveOverSet = std::function<LpSolution(int& lps)>;
 /// `lp` holds the set: its rows and the set's own variable bounds (it is left with X as bounds).
 /// `maxima[k]` is a rigorous upper bound on max directions[k]^T x when `safe` (+inf if the
 /// direction is unbounded or nothing could be certified), the floating-point maximum otherwise.
-/// Emptiness is decided by GLPK's exact simplex: `empty` only if that proves it.
+/// `empty` only with an infeasibility certificate verified in exact arithmetic
+/// (lp_certificate.hpp); an infeasible floating-point LP without one is `unknown`.
 Extent certified_extent(LinearProgram& lp, const SolveOverSet& solve,
                         const std::vector<Eigen::VectorXd>& directions, bool safe);
 

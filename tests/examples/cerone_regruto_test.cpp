@@ -15,7 +15,7 @@ TEST(CeroneRegrutoExample, ErrorsStayWithinTheirBoundsAndThetaIsCovered) {
   EXPECT_LE((e.data.r - e.lambda).cwiseAbs().maxCoeff(), delta);
   EXPECT_GT((e.data.y - e.w).cwiseAbs().maxCoeff(), 0.5 * delta);  // the errors are really drawn
   const auto res = sets::lpv_pui(sets::cerone_regruto::structure(), e.data);
-  ASSERT_FALSE(res.pui.empty);
+  ASSERT_FALSE(res.pui.empty());
   EXPECT_TRUE(sets::contains(res.pui.box, sets::cerone_regruto::true_theta()));
 }
 
@@ -26,7 +26,7 @@ TEST(CeroneRegrutoExample, SinusoidalSchedulingAndLaggedReading) {
   ASSERT_EQ(e.data.r.cols(), 2);                     // [lambda_{t-1}, lambda_{t-2}]
   EXPECT_DOUBLE_EQ(e.data.r(5, 1), e.lambda(3, 0) + e.eps(3, 0));
   const auto res = sets::lpv_pui(sets::cerone_regruto::lagged_structure(), e.data);
-  ASSERT_FALSE(res.pui.empty);
+  ASSERT_FALSE(res.pui.empty());
   EXPECT_TRUE(sets::contains(res.pui.box, sets::cerone_regruto::true_theta()));
 }
 

@@ -44,7 +44,7 @@ RC_GTEST_PROP(Pui, TrueParameterIsAlwaysInsideExactRegressors, ()) {
   const int N = *rc::gen::inRange(p + 1, 60);
   const Data d = make_data(p, N, *rc::gen::arbitrary<std::uint64_t>());
   const auto r = sets::pui(FeasibleParameterSet::from_data(d.Phi, d.y, d.delta));
-  RC_ASSERT(!r.empty);
+  RC_ASSERT(r.consistency.certified_consistent());
   RC_ASSERT(r.guaranteed);
   RC_ASSERT(sets::contains(r.box, d.theta));
 }
@@ -69,7 +69,7 @@ RC_GTEST_PROP(Pui, TrueParameterIsAlwaysInsideIntervalRegressors, ()) {
   const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
   RC_ASSERT(fps.contains(d.theta) != sets::BoolInterval::no);
   const auto all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
-  RC_ASSERT(!all.empty);
+  RC_ASSERT(all.consistency.certified_consistent());
   RC_ASSERT(all.guaranteed);
   RC_ASSERT(sets::contains(all.box, d.theta));
 }
@@ -80,7 +80,7 @@ RC_GTEST_PROP(Pui, EndsAreAttainedAndSampledPointsInside, ()) {
   const Data d = make_data(p, N, *rc::gen::arbitrary<std::uint64_t>());
   const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
   const auto r = sets::pui(fps);
-  RC_ASSERT(!r.empty);
+  RC_ASSERT(r.consistency.certified_consistent());
   const double tol = 1e-7;
   for (int l = 0; l < p; ++l) {
     for (const Eigen::VectorXd& x : {Eigen::VectorXd(r.lower_points.col(l)), Eigen::VectorXd(r.upper_points.col(l))}) {
@@ -108,7 +108,7 @@ TEST(Pui, TwoDimensionalBoxEqualsExactPolygonBoundingBox) {
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const Data d = make_data(2, 12, seed);
     const auto r = sets::pui(FeasibleParameterSet::from_data(d.Phi, d.y, d.delta));
-    ASSERT_FALSE(r.empty);
+    ASSERT_EQ(r.consistency.falsified, sets::Falsified::no);
     // half-planes a^T x <= b with exact data (y +- delta rounded outward as the FPS stores it)
     const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
     std::vector<std::array<CGAL::Gmpq, 3>> hp;  // a0, a1, b
@@ -152,11 +152,12 @@ TEST(Pui, ConflictingDataAreReportedAsFalsification) {
   Data d = make_data(2, 30, 3);
   d.y[17] += 5;  // an outlier no parameter can explain within the bounds
   const auto r = sets::pui(FeasibleParameterSet::from_data(d.Phi, d.y, d.delta));
-  ASSERT_TRUE(r.empty);
-  ASSERT_FALSE(r.falsification.samples.empty());
-  EXPECT_NE(std::find(r.falsification.samples.begin(), r.falsification.samples.end(), 17),
-            r.falsification.samples.end());
-  EXPECT_NE(r.falsification.message().find("falsify"), std::string::npos);
+  ASSERT_TRUE(r.empty());
+  EXPECT_EQ(r.consistency.falsified, sets::Falsified::yes);
+  ASSERT_FALSE(r.consistency.conflict.samples.empty());
+  EXPECT_NE(std::find(r.consistency.conflict.samples.begin(), r.consistency.conflict.samples.end(), 17),
+            r.consistency.conflict.samples.end());
+  EXPECT_NE(r.consistency.conflict.message().find("falsify"), std::string::npos);
 }
 
 TEST(Pui, BadInputNamesSampleAndField) {
@@ -195,7 +196,7 @@ TEST(Pui, PointRegressorColumnsAreNotSplitIntoOrthants) {
   const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
   const auto r2 = sets::pui(fps);
   const auto all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
-  ASSERT_FALSE(r2.empty);
+  ASSERT_FALSE(r2.empty());
   EXPECT_LT(r2.box[1].lower(), 0.0);
   EXPECT_GT(r2.box[1].upper(), 0.0);
   for (const auto& o : r2.orthants) EXPECT_EQ(o.signs.at(1), 0);
@@ -302,7 +303,7 @@ RC_GTEST_PROP(FpsSupport, BoundsEverySampledPointAndMatchesThePolytope, ()) {
   sets::PuiOptions opt;
   opt.working_set = *rc::gen::arbitrary<bool>();
   const sets::FpsSupport s = sets::support(fps, dirs, opt);
-  RC_ASSERT(!s.empty);
+  RC_ASSERT(s.consistency.certified_consistent());
   RC_ASSERT(s.guaranteed);
   RC_ASSERT(s.maxima.size() == dirs.size());
   std::vector<Eigen::VectorXd> points = sample_set(fps, s.box, 300, seed + 3);
@@ -334,7 +335,7 @@ RC_GTEST_PROP(FpsSupport, IntervalRegressorsTakeTheLargestOrthantPiece, ()) {
   const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
   const auto dirs = random_directions(p, 6, seed + 2);
   const sets::FpsSupport s = sets::support(fps, dirs, {.orthants = sets::OrthantSelection::all});
-  RC_ASSERT(!s.empty);
+  RC_ASSERT(s.consistency.certified_consistent());
   RC_ASSERT(s.guaranteed);
   std::vector<double> best(dirs.size(), -sets::inf);
   for (const auto& o : sets::all_orthants(p)) {
@@ -354,8 +355,8 @@ TEST(FpsSupport, EmptySetAndBadDirections) {
   Phi << 1, 1, 1;
   const auto fps = FeasibleParameterSet::from_data(Phi, Eigen::Vector3d(0, 1, 0), Eigen::Vector3d::Constant(0.1));
   const auto s = sets::support(fps, {Eigen::VectorXd::Ones(1)});
-  EXPECT_TRUE(s.empty);
-  EXPECT_FALSE(s.falsification.samples.empty());
+  EXPECT_TRUE(s.empty());
+  EXPECT_FALSE(s.consistency.conflict.samples.empty());
   EXPECT_EQ(s.maxima[0], -sets::inf);
   EXPECT_THROW(sets::support(fps, {Eigen::VectorXd::Ones(2)}), sets::InputError);
 }
@@ -367,7 +368,7 @@ TEST(FpsSupport, UnboundedDirectionIsInfinite) {
   Phi << 1, 0, 1, 0, 2, 0, 1, 0;  // theta_2 is not constrained at all
   const auto fps = FeasibleParameterSet::from_data(Phi, Eigen::Vector4d(1, 1, 2, 1), Eigen::Vector4d::Constant(0.1));
   const auto s = sets::support(fps, {Eigen::Vector2d(0, 1), Eigen::Vector2d(1, 1)});
-  ASSERT_FALSE(s.empty);
+  ASSERT_EQ(s.consistency.falsified, sets::Falsified::no);
   EXPECT_EQ(s.maxima[0], sets::inf);
   EXPECT_EQ(s.maxima[1], sets::inf);
 }
@@ -391,6 +392,21 @@ TEST(FeasibleParameterSet, AddStripBuildsTheSameSetAsFromData) {
     EXPECT_EQ(a.box[j].upper(), b.box[j].upper());
   }
   EXPECT_EQ(grown.contains(d.theta), bulk.contains(d.theta));
+}
+
+// The verdict alone (diagnosis windows use it): consistent data are proven consistent, an
+// outlier is proven to falsify the model, and the verdict agrees with pui()'s.
+TEST(Consistency, VerdictAgreesWithPui) {
+  Data d = make_data(3, 40, 21);
+  const auto good = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  EXPECT_EQ(sets::check_consistency(good).falsified, sets::Falsified::no);
+  d.y[5] += 10;
+  const auto bad = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  const auto v = sets::check_consistency(bad);
+  EXPECT_EQ(v.falsified, sets::Falsified::yes);
+  EXPECT_EQ(v.falsified, sets::pui(bad).consistency.falsified);
+  EXPECT_NE(std::find(v.conflict.samples.begin(), v.conflict.samples.end(), 5), v.conflict.samples.end());
+  EXPECT_NE(v.message().find("falsify"), std::string::npos);
 }
 
 namespace {

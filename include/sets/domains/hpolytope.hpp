@@ -2,7 +2,8 @@
 // H-polytope {x : A x <= b} and its operations.
 //
 // Guarantees. `contains` evaluates A x - b in interval arithmetic (yes/no/unknown). `is_empty`
-// is decided by GLPK's exact rational simplex on the stored doubles. `outer_box` and `support`
+// answers yes/no only with a certificate checked in exact rational arithmetic on the stored
+// doubles (sets/numeric/lp_certificate.hpp), else unknown. `outer_box` and `support`
 // certify every finite bound with a Neumaier–Shcherbina safe bound over an artificial box that is
 // proven to contain the polytope (as pui() does), so they contain the polytope; when a direction
 // cannot be certified the answer is +inf (still a bound, just useless) — this happens only for
@@ -41,7 +42,7 @@ class HPolytope {
   Eigen::VectorXd b_;
 };
 
-/// yes/no from the exact rational simplex; `unknown` only if that solver fails.
+/// yes: a Farkas certificate verified exactly; no: a point verified exactly; else unknown.
 BoolInterval is_empty(const HPolytope& P);
 
 /// Largest inscribed ball (floating point LP, not a guarantee). radius = inf if P contains

@@ -69,7 +69,8 @@ BoolInterval contains(const Zonotope& Z, const Eigen::Ref<const Eigen::VectorXd>
 /// yes/no only when proven in interval arithmetic; unknown near the boundary and for most points
 /// of a flat ellipsoid (rounding cannot decide membership in a lower-dimensional set).
 BoolInterval contains(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& x);
-/// GLPK's exact rational simplex (yes/no; unknown only if that solver fails).
+/// yes / no only with an exact certificate (convex weights solved in rationals, or a Farkas
+/// certificate; sets/numeric/lp_certificate.hpp), else unknown.
 BoolInterval contains(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd>& x);
 /// `unknown` when some a_i^T x - b_i cannot be sign-decided in interval arithmetic.
 BoolInterval contains(const HPolytope& P, const Eigen::Ref<const Eigen::VectorXd>& x);

@@ -4,8 +4,9 @@
 // to and from other set types in conversions.hpp.
 //
 // Guarantees. `outer_box` and `support` are exact/rigorous (maxima over the points in interval
-// arithmetic). `contains` is decided by GLPK's exact rational simplex (yes/no; unknown only if
-// that solver fails). `convex_hull` runs in CGAL's exact arithmetic (Epeck) in 1-3 dimensions.
+// arithmetic). `contains` answers yes/no only with an exact certificate (convex weights solved
+// in rationals, or a Farkas certificate; sets/numeric/lp_certificate.hpp), else unknown.
+// `convex_hull` runs in CGAL's exact arithmetic (Epeck) in 1-3 dimensions.
 
 #include <Eigen/Core>
 

@@ -17,6 +17,7 @@
 
 #include "sets/core/bool_interval.hpp"
 #include "sets/domains/hpolytope.hpp"
+#include "sets/fps/falsification.hpp"
 #include "sets/numeric/interval_matrix.hpp"
 
 namespace sets {
@@ -80,31 +81,32 @@ struct PuiOptions {
   bool warm_start = true;     // re-solve from the previous basis (false: cold start, for benchmarks)
 };
 
+/// feasible: the LPs found points (see OrthantReport::witness for a proof); empty: certified
+/// by an exact infeasibility certificate; unknown: the LP said infeasible (or failed) and no
+/// certificate could be verified — never counted as empty.
 enum class OrthantStatus { feasible, empty, unknown };
 
 struct OrthantReport {
   Orthant signs;             // empty vector: the whole space (exact regressors)
   OrthantStatus status = OrthantStatus::unknown;
-  IntervalVector box;        // PUIs inside this orthant (valid when feasible)
-};
-
-/// Samples that cannot all hold at once, with how far the best compromise violates each.
-struct Falsification {
-  std::vector<int> samples;
-  std::vector<double> violation;  // in output units
-  std::string message() const;
+  IntervalVector box;        // outer bound of the set inside this orthant (the orthant itself when unknown)
+  bool witness = false;      // a point of this orthant was proven to satisfy every sample
 };
 
 struct PuiResult {
-  IntervalVector box;             // the PUIs [theta_min, theta_max]
+  IntervalVector box;             // the PUIs [theta_min, theta_max]; size 0 when certified empty
   Eigen::VectorXd central;        // centre of the box (eqs. 41–42)
-  bool empty = false;             // the data falsify the model
-  bool guaranteed = false;        // every finite end certified by a safe bound
+  ConsistencyVerdict consistency; // do the data falsify the model? (yes/no only when certified)
+  bool guaranteed = false;        // the box is a rigorous outer bound: every finite end certified
   std::vector<OrthantReport> orthants;
   Eigen::MatrixXd lower_points;   // column l: a feasible point attaining theta_l^min (LP tolerance)
   Eigen::MatrixXd upper_points;   // column l: a feasible point attaining theta_l^max
-  Falsification falsification;    // filled when empty
   int lp_solves = 0;
+
+  /// True only when the data are *certified* to falsify the model (consistency.falsified ==
+  /// yes). `unknown` is not empty: the box is then still an outer bound (infinite where nothing
+  /// could be said) and the caller reports that consistency was not certified.
+  bool empty() const { return consistency.certified_falsified(); }
 };
 
 /// Parameter uncertainty intervals: a box that contains the FPS (the part reached by the chosen
@@ -118,18 +120,24 @@ PuiResult pui(const FeasibleParameterSet& fps, const PuiOptions& options = {});
 /// docs/architecture.md), so it holds for the whole set. +inf: unbounded or not certified.
 /// Interval regressors: the maximum over the orthants that pui() visits with the same options.
 struct FpsSupport {
-  std::vector<double> maxima;   // one per direction; -inf for an empty set
-  IntervalVector box;           // the PUIs found on the way
-  bool empty = false;           // the data falsify the model
-  bool guaranteed = false;      // every finite value certified by a safe bound
-  Falsification falsification;  // filled when empty
+  std::vector<double> maxima;      // one per direction; -inf when certified empty
+  IntervalVector box;              // the PUIs found on the way
+  ConsistencyVerdict consistency;  // as PuiResult::consistency
+  bool guaranteed = false;         // every finite value certified by a safe bound
   int lp_solves = 0;
+
+  /// True only when the data are *certified* to falsify the model (see PuiResult::empty).
+  bool empty() const { return consistency.certified_falsified(); }
 };
 FpsSupport support(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions,
                    const PuiOptions& options = {});
 
-/// The samples whose constraints conflict (support of the minimax-violation fit), or an empty
-/// list if a parameter satisfies them all.
+/// Do the data falsify the model? The verdict of pui() without the bounds (for callers that
+/// need only this answer, e.g. diagnosis windows).
+ConsistencyVerdict check_consistency(const FeasibleParameterSet& fps, const PuiOptions& options = {});
+
+/// The samples whose constraints conflict (support of the minimax-violation fit, in floating
+/// point: a report, not a proof), or an empty list if the fit violates none.
 Falsification find_conflict(const FeasibleParameterSet& fps);
 
 std::vector<Orthant> all_orthants(int p);

@@ -6,6 +6,10 @@
 // copyable; never share one between threads. Separate objects on separate threads are safe
 // (tests/linear_program_test.cpp runs PUIs on several threads at once).
 //
+// Errors: bad input (NaN, infinite coefficients, magnitudes beyond 1e+-150, bad limits) is an
+// InputError; a GLPK failure it cannot recover from, or a GLPK internal error (which would
+// abort() without the hook of glpk_error.hpp), is a NumericalError on the calling thread.
+//
 // Guarantees: `LpSolution::objective` is a floating-point optimum, not a bound. For a rigorous
 // bound call `safe_bound` (Neumaier–Shcherbina, see safe_bound.hpp), which needs finite variable
 // bounds wherever the reduced cost is not exactly zero.
@@ -18,6 +22,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "sets/numeric/safe_bound.hpp"
 
 namespace sets {
 
@@ -51,8 +57,8 @@ struct LpSolveOptions {
 enum class MilpStatus { optimal, feasible, infeasible, no_solution };
 
 struct MilpOptions {
-  double time_limit_s = 60;  // GLPK branch-and-cut stops here with its incumbent
-  double relative_gap = 1e-6;
+  double time_limit_s = 60;    // GLPK branch-and-cut stops here with its incumbent (> 0; inf: none)
+  double relative_gap = 1e-6;  // finite, >= 0
   bool verbose = false;
   /// Stop after this many branch-and-bound nodes (0 = no limit). Unlike the wall-clock time
   /// limit, the outcome does not depend on the machine's speed or load: tests use it.
@@ -110,6 +116,9 @@ class LinearProgram {
   double row_upper(int i) const;
   /// Row i's stored coefficients as (column, value) pairs.
   const std::vector<std::pair<int, double>>& row(int i) const;
+  /// All rows with their bounds, exactly as given (certificates are checked on these, never on
+  /// GLPK's scaled copy).
+  const LpRows& rows() const;
 
   void set_objective(const Eigen::Ref<const Eigen::VectorXd>& c, Sense sense);
   /// Objective +-x_j: the building block of every PUI.
@@ -117,11 +126,15 @@ class LinearProgram {
   const Eigen::VectorXd& objective() const;
   Sense sense() const;
 
-  /// Simplex from the last basis (warm start). Throws NumericalError if GLPK fails.
+  /// Simplex from the last basis (warm start), on GLPK's scaled copy (power-of-2 factors, so
+  /// exact). When GLPK fails it recovers (advanced basis, slack basis with the textbook ratio
+  /// test, exact simplex as a search aid) before throwing NumericalError. `infeasible` is a
+  /// floating-point verdict, not a proof: see lp_certificate.hpp.
   LpSolution solve();
   LpSolution solve(const LpSolveOptions& options);
-  /// GLPK's exact rational simplex on the stored (double) data: slow, but its verdict on
-  /// feasibility is rigorous. Used to certify that an LP is empty.
+  /// GLPK's exact rational simplex (glp_exact), as a solver only: it first replaces every
+  /// double by a nearby simple fraction, so its verdict is about a different problem and is
+  /// NOT a certificate. Prove emptiness with lp_certificate.hpp.
   LpSolution solve_exact();
   /// Forgets the basis: the next solve starts cold (for benchmarks and recovery).
   void reset_basis();

@@ -280,9 +280,9 @@ void bounded_regions(UncertaintySet& S, const Eigen::Ref<const Eigen::VectorXd>&
       for (int j = 0; j < nw; ++j) dirs.push_back(sign * M->col(j));
   const FpsSupport sup = support(fps, dirs);
   S.lp_solves += sup.lp_solves;
-  if (sup.empty) {
+  if (sup.empty()) {  // certified only: an undecided verdict goes on (and fails below if unbounded)
     S.empty = true;
-    S.falsification = sup.falsification.message();
+    S.falsification = sup.consistency.message();
     return;
   }
   set_coefficient_box(S, sup, g.n);

@@ -8,7 +8,7 @@ LpvPuiResult lpv_pui(const LpvModelStructure& model, const LpvMeasurements& data
   r.regression = lpv_regression(model, data, range);
   const FeasibleParameterSet fps = FeasibleParameterSet::from_interval_data(r.regression.Phi, r.regression.Y);
   r.pui = pui(fps, options);
-  for (int row : r.pui.falsification.samples) r.falsifying_times.push_back(r.regression.time[static_cast<std::size_t>(row)]);
+  for (int row : r.pui.consistency.conflict.samples) r.falsifying_times.push_back(r.regression.time[static_cast<std::size_t>(row)]);
   return r;
 }
 

@@ -97,29 +97,31 @@ PuiResult pui(const CanonicalFps& fps, const PuiOptions& options) {
   PuiResult r;
   const int p = fps.dimension();
   if (!fps.falsified_rows().empty()) {
-    r.empty = true;
-    r.guaranteed = true;  // 0 outside an output interval is decided exactly
-    r.falsification.samples = fps.falsified_rows();
-    r.falsification.violation.assign(r.falsification.samples.size(), 0.0);
+    r.consistency.falsified = Falsified::yes;  // 0 outside an output interval is decided exactly
+    r.guaranteed = true;
+    r.consistency.conflict.samples = fps.falsified_rows();
+    r.consistency.conflict.violation.assign(r.consistency.conflict.samples.size(), 0.0);
     return r;
   }
   r.box.resize(p);
   r.lower_points.resize(p, p);
   r.upper_points.resize(p, p);
   r.guaranteed = true;
+  r.consistency.falsified = Falsified::no;  // the set is the product of the blocks' sets
   std::vector<PuiResult> parts;
   for (const CanonicalFps::Block& b : fps.blocks()) {
     parts.push_back(pui(b.set, options));
     PuiResult& part = parts.back();
     r.lp_solves += part.lp_solves;
     r.guaranteed = r.guaranteed && part.guaranteed;
-    if (part.empty) {
-      r.empty = true;
+    if (part.empty()) {
+      r.consistency = part.consistency;
       r.box = IntervalVector();
-      r.falsification = part.falsification;
-      for (int& s : r.falsification.samples) s = b.rows[static_cast<std::size_t>(s)];
+      for (int& s : r.consistency.conflict.samples) s = b.rows[static_cast<std::size_t>(s)];
       return r;
     }
+    if (part.consistency.falsified == Falsified::unknown && r.consistency.falsified == Falsified::no)
+      r.consistency = part.consistency;  // undecided block: the product is undecided unless another is empty
     for (std::size_t q = 0; q < b.parameters.size(); ++q) r.box[b.parameters[q]] = part.box[static_cast<Eigen::Index>(q)];
   }
   // Attaining points: a block's own point in its parameters, one feasible point of every other

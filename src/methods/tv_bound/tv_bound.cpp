@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sets/core/error.hpp"
+#include "sets/numeric/lp_certificate.hpp"
 #include "methods/tv_bound/jump_search.hpp"
 
 namespace sets {
@@ -138,6 +139,11 @@ TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& option
   if (!fixed_eps) c.segment(blk.first_eps, l) = h;
   lp.set_objective(c, Sense::minimize);
   const LpSolution s = lp.solve();
+  // Falsified only with an exactly verified Farkas certificate; an infeasible floating-point LP
+  // alone cannot tell "the data falsify the model" from rounding.
+  if (fixed_eps && s.status == LpStatus::infeasible && !prove_infeasible(lp))
+    throw NumericalError("linf_bound: the LP solver found no perturbation trajectory within epsilon, but no "
+                         "certificate of it could be verified: whether the data falsify the model is undecided");
   if (fixed_eps && s.status == LpStatus::infeasible)
     throw EmptySetError("linf_bound: no perturbation trajectory explains the data with the noise's window norm "
                         "within the given epsilon (the data falsify the model and epsilon)");

@@ -125,7 +125,7 @@ TEST(LpvPui, TrueThetaInsideEveryPuiOver500RandomLpvSystems) {
         ASSERT_LE(phi[j], r.regression.Phi(row, j).upper() + 1e-14) << "seed " << seed << " row " << row;
       }
     }
-    ASSERT_FALSE(r.pui.empty) << "seed " << seed;
+    ASSERT_EQ(r.pui.consistency.falsified, sets::Falsified::no) << "seed " << seed;
     ASSERT_TRUE(sets::contains(r.pui.box, e.theta)) << "seed " << seed;
     // A badly excited random system can have an unbounded feasible set; pui() then reports ends
     // it cannot certify. Every bounded answer must be fully certified.
@@ -210,16 +210,16 @@ TEST(LpvPui, DataThatNoThetaExplainsAreReportedWithTheirSamples) {
   d.r = lambda + 1e-3 * Eigen::MatrixXd::NullaryExpr(T, 1, [&] { return U(rng); });
   d.delta_eta = Eigen::VectorXd::Constant(1, 1e-3);
   d.delta_eps = Eigen::MatrixXd::Constant(1, 1, 1e-3);
-  ASSERT_FALSE(sets::lpv_pui(m, d).pui.empty);  // consistent before the fault
+  ASSERT_EQ(sets::lpv_pui(m, d).pui.consistency.falsified, sets::Falsified::no);  // consistent before the fault
   d.y[15] += 0.5;
   const auto r = sets::lpv_pui(m, d);
-  ASSERT_TRUE(r.pui.empty);
+  ASSERT_TRUE(r.pui.empty());
   ASSERT_FALSE(r.falsifying_times.empty());
   // y_15 is the output of regression 15 and a regressor of 16 and 17.
   bool named = false;
   for (int t : r.falsifying_times) named = named || (t >= 15 && t <= 17);
   EXPECT_TRUE(named);
-  EXPECT_NE(r.pui.falsification.message().find("falsify"), std::string::npos);
+  EXPECT_NE(r.pui.consistency.conflict.message().find("falsify"), std::string::npos);
 }
 
 TEST(LpvPui, WorkingSetLpsGiveTheSamePuisAsTheFullLps) {

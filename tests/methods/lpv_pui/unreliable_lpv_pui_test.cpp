@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <iostream>
 #include <random>
 #include <string>
@@ -42,15 +44,14 @@ TEST(UnreliableLpvPui, LeavingErrorsOutOnlyShrinksTheRegressorBoxesAndThePuis) {
 
   const auto method = sets::lpv_pui(model, e.data);
   const auto both = sets::unreliable_lpv_pui(model, e.data, RegressorErrors::both);
-  ASSERT_FALSE(method.pui.empty);
+  ASSERT_FALSE(method.pui.empty());
   for (Eigen::Index j = 0; j < method.pui.box.size(); ++j) {  // `both` is the method itself
     EXPECT_EQ(both.pui.box[j].lower(), method.pui.box[j].lower());
     EXPECT_EQ(both.pui.box[j].upper(), method.pui.box[j].upper());
   }
 
   int empty = 0;
-  sets::PuiResult scheduling;
-  scheduling.empty = true;
+  std::optional<sets::PuiResult> scheduling;
   for (RegressorErrors which : {RegressorErrors::scheduling, RegressorErrors::output, RegressorErrors::none}) {
     const std::string name = sets::to_string(which);
     const auto r = sets::unreliable_lpv_pui(model, e.data, which);
@@ -67,14 +68,14 @@ TEST(UnreliableLpvPui, LeavingErrorsOutOnlyShrinksTheRegressorBoxesAndThePuis) {
     // A smaller set may be empty: without the errors the data can falsify the model (which is
     // why these variants are not guaranteed). Otherwise it lies in the method's answer and, with
     // errors on both signals, is really narrower.
-    if (r.pui.empty) {
+    if (r.pui.empty()) {
       ++empty;
       continue;
     }
     expect_inside(r.pui.box, method.pui.box, name);
     EXPECT_LT(total_width(r.pui.box), total_width(method.pui.box)) << name;
     if (which == RegressorErrors::scheduling) scheduling = r.pui;
-    if (which == RegressorErrors::none && !scheduling.empty) expect_inside(r.pui.box, scheduling.box, "none in scheduling");
+    if (which == RegressorErrors::none && scheduling) expect_inside(r.pui.box, scheduling->box, "none in scheduling");
   }
   EXPECT_LT(empty, 3);  // at least one variant is checked against the method's box
   std::cout << "    " << empty << " of 3 variants found the data inconsistent\n";

@@ -71,7 +71,7 @@ RC_GTEST_PROP(CanonicalFps, BlockPuisEqualThePuisOfTheWholeSet, ()) {
   }
   const auto whole = sets::FeasibleParameterSet::from_interval_data(phi, y);
   const auto a = sets::pui(blocks), b = sets::pui(whole);
-  RC_ASSERT(!a.empty && !b.empty && a.guaranteed);
+  RC_ASSERT(!a.empty() && !b.empty() && a.guaranteed);
   RC_ASSERT(sets::contains(a.box, d.theta));
   for (int j = 0; j < 5; ++j) {
     const double scale = 1 + std::abs(b.box[j].lower()) + std::abs(b.box[j].upper());
@@ -102,7 +102,7 @@ RC_GTEST_PROP(CanonicalFps, TrueParametersInsideWithIntervalRegressors, ()) {
   RC_ASSERT(fps.has_interval_regressors());
   RC_ASSERT(fps.contains(d.theta) != sets::BoolInterval::no);
   const auto r = sets::pui(fps);
-  RC_ASSERT(!r.empty);
+  RC_ASSERT(!r.empty());
   RC_ASSERT(sets::contains(r.box, d.theta));
 }
 
@@ -113,8 +113,8 @@ TEST(CanonicalFps, FalsifiedRowWithoutParametersEmptiesTheSet) {
   ASSERT_EQ(fps.falsified_rows(), std::vector<int>{6});
   EXPECT_EQ(fps.contains(d.theta), sets::BoolInterval::no);
   const auto r = sets::pui(fps);
-  EXPECT_TRUE(r.empty);
-  EXPECT_EQ(r.falsification.samples, std::vector<int>{6});
+  EXPECT_TRUE(r.empty());
+  EXPECT_EQ(r.consistency.conflict.samples, std::vector<int>{6});
 }
 
 // The canonical regression of the paper's form splits into the blocks of Remark 1.

@@ -70,7 +70,7 @@ TEST(LevelSetUncertainty, FpsLeavesOutRowsWithoutParametersAndReportsThem) {
   ASSERT_EQ(fps.falsified_rows().size(), 1u);  // |10| > 2
   EXPECT_EQ(fps.falsified_rows()[0], 1);
   EXPECT_EQ(fps.contains(Eigen::Vector2d(1.0, 10.0)), sets::BoolInterval::no);  // the data contradict the bound
-  EXPECT_TRUE(sets::pui(fps).empty);
+  EXPECT_TRUE(sets::pui(fps).empty());
   EXPECT_NE(sets::regression_fps(r, 10.0).contains(Eigen::Vector2d(1.0, 10.0)), sets::BoolInterval::no);
 }
 

@@ -38,7 +38,7 @@ TEST(SsUncertainty, EntryPointChainsTheSteps) {
   EXPECT_EQ(r.estimate_fps.size(), sets::regression_fps(id.regression, dom.ell).size());
   EXPECT_NE(r.estimate_fps.contains(dom.theta), sets::BoolInterval::no);
   ASSERT_TRUE(r.estimate_fps_pui.has_value());
-  ASSERT_FALSE(r.estimate_fps_pui->empty);
+  ASSERT_EQ(r.estimate_fps_pui->consistency.falsified, sets::Falsified::no);
   EXPECT_TRUE(sets::contains(r.estimate_fps_pui->box, dom.theta));
   o.estimate_fps_pui = false;
   EXPECT_FALSE(sets::ss_uncertainty(u, y, o).estimate_fps_pui.has_value());

@@ -171,7 +171,7 @@ TEST(StateEnclosure, UserStateBoundCarriesTheTruth) {
   const auto fps = sets::guaranteed_fps(id, c.u, c.y, X, c.vbar);
   EXPECT_NE(fps.contains(c.truth), sets::BoolInterval::no);
   const auto box = sets::pui(fps);
-  ASSERT_FALSE(box.empty);
+  ASSERT_FALSE(box.empty());
   EXPECT_TRUE(sets::contains(box.box, c.truth));
   // A bound the data contradict (state 1 is the measured output up to the noise) is reported.
   a.state_error_bound.setZero();

@@ -14,7 +14,7 @@ namespace sets {
 struct LpvPuiResult {
   LpvRegression regression;
   PuiResult pui;
-  std::vector<int> falsifying_times;  // sample indices t of pui.falsification (when empty)
+  std::vector<int> falsifying_times;  // sample indices t of pui.consistency.conflict
 };
 
 /// PUIs and central estimate of the LPV model's (outer-approximated) feasible parameter set.

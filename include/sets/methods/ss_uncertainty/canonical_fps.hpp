@@ -52,8 +52,8 @@ class CanonicalFps {
   std::vector<int> falsified_;
 };
 
-/// PUIs block by block, assembled: box, central, empty, guaranteed, lp_solves and, when empty,
-/// the falsification of the first empty block (samples are rows of the regression). The
+/// PUIs block by block, assembled: box, central, consistency, guaranteed, lp_solves and, when empty,
+/// the verdict of the first certified-empty block (samples are rows of the regression). The
 /// attaining points are assembled from one feasible point per block. `orthants` stays empty
 /// (the blocks' orthants are in their own parameters). A falsified row without parameters makes
 /// the result empty too (its row is the falsification).
