@@ -16,17 +16,12 @@
 #include "sets/domains/set_operations.hpp"
 #include "sets/domains/vpolytope.hpp"
 #include "sets/domains/zonotope.hpp"
+#include "support/random_matrices.hpp"
 
 namespace {
 
 using sets::BoolInterval;
-
-struct Rng {
-  std::mt19937_64 g;
-  explicit Rng(std::uint64_t seed) : g(seed) {}
-  double u(double lo = -1, double hi = 1) { return std::uniform_real_distribution<double>(lo, hi)(g); }
-  Eigen::MatrixXd mat(int r, int c) { return Eigen::MatrixXd::NullaryExpr(r, c, [&] { return u(); }); }
-};
+using sets::test::Rng;
 
 // Points are pulled towards an interior point by this fraction, so that the rounding of the
 // sample itself cannot put it outside the set (the sets are of size ~1).
