@@ -33,9 +33,9 @@ int main(int argc, char** argv) {
                      "sets-diagnose: locate where a model and recordings differ, name the missing physics, add it, "
                      "and show the fit improve");
   CLI::App& app = cli.app();
-  std::string model_path, data_path, val_path, json_path, report_dir, plant;
-  bool example = false, quiet = false, suite = false, no_floor = false;
-  int threads = 2;
+  std::string model_path, data_path, val_path, json_path, report_dir, plant, suite_kind;
+  bool example = false, quiet = false, no_floor = false;
+  int threads = 2, count = 40, seed = 1;
   app.add_option("--model", model_path, "model file (JSON, format version 1; see docs/model-format.md)");
   app.add_option("--data", data_path, "recording to calibrate and diagnose on (CSV with a header, or .mat)");
   app.add_option("--validation", val_path, "second recording, used to judge the hypotheses and the fit");
@@ -47,9 +47,15 @@ int main(int argc, char** argv) {
   app.add_flag("--example", example, "diagnose a built-in simulated example (no files needed)");
   app.add_flag("--no-noise-floor", no_floor,
                "never stop early because the misfit is at the noise level (hypotheses must fail on their own)");
-  app.add_option("--plant", plant, "with --suite: only this synthetic plant (prints its full report)");
-  app.add_flag("--suite", suite, "diagnose every synthetic plant and print the confusion table (markdown)");
-  app.add_option("--threads", threads, "threads for the competing hypotheses")->check(CLI::Range(1, 64));
+  app.add_option("--plant", plant, "with --suite fixed: only this synthetic plant (prints its full report)");
+  auto* suite = app.add_option("--suite", suite_kind,
+                               "diagnose synthetic plants with known truth and print the scores (markdown): fixed "
+                               "(the default) or random")
+                    ->expected(0, 1);
+  app.add_option("--count", count, "with --suite random: number of plants")->check(CLI::Range(1, 1000000));
+  app.add_option("--seed", seed, "with --suite random: the first plant's seed")->check(CLI::Range(0, 2000000000));
+  app.add_option("--threads", threads, "threads for the competing hypotheses (with --suite: plants at once)")
+      ->check(CLI::Range(1, 64));
   app.add_flag("--quiet", quiet, "no progress messages on stderr");
   std::string intersample;
   app.add_option("--intersample", intersample,
@@ -60,8 +66,11 @@ int main(int argc, char** argv) {
     opt.threads = threads;
     if (no_floor) opt.noise_floor_factor = 0;
     if (!intersample.empty()) opt.intersample = parse_intersample(intersample, "--intersample");
-    if (suite) {
-      print_suite(plant, opt);
+    if (suite->count() > 0) {
+      if (suite_kind.empty()) suite_kind = "fixed";
+      if (suite_kind != "fixed" && suite_kind != "random")
+        throw InputError("--suite: fixed or random, not \"" + suite_kind + "\"");
+      print_suite(suite_kind, plant, count, static_cast<unsigned>(seed), opt, quiet);
       return 0;
     }
     ModelFile model;

@@ -10,6 +10,7 @@
 #include "sets/core/atomic_file.hpp"
 #include "sets/core/error.hpp"
 #include "sets/diagnosis/report_html.hpp"
+#include "sets/examples/diagnosis_suite.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 
 namespace fs = std::filesystem;
@@ -159,51 +160,26 @@ void write_report(const Diagnosis& d, const std::string& dir, const std::string&
   out.commit();
 }
 
-void print_suite(const std::string& plant, const DiagnosisOptions& options) {
-  // Every plant of the suite: true effect against the first effect named.
-  std::cout << "| plant | true effect | named (ranked) | right | nominal fit (val) | augmented fit (val) | s | true value: "
-               "guaranteed interval (equation error, output error) |\n"
-               "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  int right = 0, total = 0, clean = 0, clean_ok = 0, checked = 0, contained = 0;
-  for (const auto& name : synthetic_plant_names()) {
-    if (!plant.empty() && name != plant) continue;
-    const SyntheticPlant p = synthetic_plant(name);
-    const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, options);
-    if (!plant.empty()) std::cerr << diagnosis_text(d);
-    std::string named;
-    for (const auto& e : d.effects) named += (named.empty() ? "" : ", ") + e.name;
-    if (named.empty()) named = "none";
-    const std::string first = d.effects.empty() ? "none" : d.effects.front().name;
-    const bool ok = first == p.true_effect;
-    ++total;
-    right += ok;
-    if (p.true_effect == "none") ++clean, clean_ok += ok;
-    char buf[256];
-    std::snprintf(buf, sizeof buf, " | %.1f | %.1f | %.1f |", d.fit_nominal_validation.at(0),
-                  d.fit_augmented_validation.at(0), d.seconds);
-    // Does the reported guaranteed interval contain the true value?
-    std::string truth;
-    for (const auto& [pn, tv] : p.true_values)
-      for (const auto& e : d.effects)
-        for (const auto& ep : e.parameters)
-          if (ep.name == pn) {
-            const bool in = ep.lo <= tv && tv <= ep.hi;
-            ++checked;
-            contained += in;
-            char t[256];
-            char ee[96] = "none";
-            if (ep.has_ee)
-              std::snprintf(ee, sizeof ee, "[%.4g, %.4g]%s", ep.ee_lo, ep.ee_hi,
-                            ep.ee_lo <= tv && tv <= ep.ee_hi ? "" : " **misses**");
-            std::snprintf(t, sizeof t, "%s = %g: [%.4g, %.4g] %s (EE %s, OE [%.4g, %.4g])", pn.c_str(), tv, ep.lo,
-                          ep.hi, in ? "contains" : "**misses**", ee, ep.oe_lo, ep.oe_hi);
-            truth += (truth.empty() ? "" : "; ") + std::string(t);
-          }
-    std::cout << "| " << name << " | " << p.true_effect << " | " << named << " | " << (ok ? "yes" : "**no**") << buf
-              << " " << (truth.empty() ? "–" : truth) << " |\n"
-              << std::flush;
+void print_suite(const std::string& kind, const std::string& plant, int count, unsigned seed, const DiagnosisOptions& options,
+                 bool quiet) {
+  SuiteOptions so;
+  so.threads = options.threads;
+  so.diagnosis = options;
+  if (!quiet)
+    so.on_plant = [](const SuitePlantResult& r, int done, int total) {
+      std::string truth, named;
+      for (const auto& t : r.truth) truth += (truth.empty() ? "" : ", ") + t.name;
+      for (const auto& n : r.named) named += (named.empty() ? "" : ", ") + n;
+      std::cerr << "[sets-diagnose] " << done << "/" << total << " " << r.name << (r.family.empty() ? "" : " (" + r.family + ")")
+                << ": true " << (truth.empty() ? "none" : truth) << ", named " << (named.empty() ? "none" : named) << ", "
+                << r.seconds << " s" << (r.error.empty() ? "" : ", ERROR " + r.error) << std::endl;
+    };
+  const auto results = kind == "fixed" ? run_fixed_suite(plant, so) : run_random_suite(seed, count, so);
+  if (kind == "fixed" && !plant.empty()) {
+    const SyntheticPlant p = synthetic_plant(plant);
+    DiagnosisOptions verbose = options;
+    if (!quiet) verbose.progress = [](const std::string& s) { std::cerr << "[sets-diagnose] " << s << std::endl; };
+    std::cerr << diagnosis_text(diagnose(p.nominal, p.estimation, &p.validation, verbose));
   }
-  std::cout << "\nNamed right (first effect = true effect): " << right << " of " << total
-            << "; clean plants with no invented effect: " << clean_ok << " of " << clean
-            << "; true effect values inside the guaranteed interval: " << contained << " of " << checked << "\n";
+  std::cout << suite_report(results);
 }

@@ -13,5 +13,8 @@ void write_report(const sets::Diagnosis& d, const std::string& dir, const std::s
 /// The files write_report writes (a regular expression over file names).
 inline constexpr const char* kReportFiles = R"((index\.html|report\.txt|augmented_model\.json|signals_[a-z]+\.png|signature\.png))";
 
-/// Diagnoses every synthetic plant (or only `plant`) and prints the confusion table (markdown).
-void print_suite(const std::string& plant, const sets::DiagnosisOptions& options);
+/// Diagnoses the fixed suite (every plant, or only `plant`, whose full report then goes to stderr)
+/// or `count` random plants from `seed` (sets/examples/diagnosis_suite.hpp) and prints the scores
+/// (markdown); one progress line per plant on stderr unless `quiet`. options.threads plants at once.
+void print_suite(const std::string& kind, const std::string& plant, int count, unsigned seed,
+                 const sets::DiagnosisOptions& options, bool quiet);

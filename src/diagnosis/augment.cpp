@@ -50,48 +50,26 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
     d.augmented_validation = av.simulate(r.parameters).outputs;
     d.fit_augmented_validation = fits(av.measured(), d.augmented_validation);
   }
-  // Linearised output error around the estimate, strips |r_t - J_t dtheta| <= delta_j with
-  // delta_j = the largest residual of output j at the estimate (the smallest bound under which
-  // the calibrated model itself is consistent with every used sample).
+  // Linearised output error around the estimate (stage_helpers: the bounded-error strips), and
+  // the same residuals, sub-sampled and normalised, for the statistical intervals.
   const Eigen::MatrixXd J = output_jacobian(aug, r.parameters, fr, o.scale, r.outputs);
   const Eigen::MatrixXd Ra = Y - r.outputs;
-  const Eigen::Index stride = std::max<Eigen::Index>(1, N / 1500);
-  const Eigen::Index m = (N + stride - 1) / stride;
-  Eigen::MatrixXd Phi(m * ny, J.cols());
-  Eigen::VectorXd yy(m * ny), dd(m * ny);
+  const OutputErrorIntervals oe = output_error_intervals(J, Ra, r.parameters, fr, o.scale);
+  const Eigen::Index stride = oe.stride, m = (N + stride - 1) / stride;
   Eigen::MatrixXd Jw(m * ny, J.cols());
   Eigen::VectorXd rw(m * ny);
-  for (Eigen::Index j = 0; j < ny; ++j) {
-    double delta = 0;
-    for (Eigen::Index i = 0; i < m; ++i) delta = std::max(delta, std::abs(Ra(i * stride, j)));
-    // 1.5 x the largest residual at the estimate: the true parameters see the noise itself, whose
-    // largest value is about as large as the estimate's; the margin keeps them inside.
-    delta = 1.5 * delta + 1e-300;
-    // Rows in units of the bound and columns in units of each parameter's scale keep the LP
-    // well conditioned (position residuals of 1e-6 m next to forces of 1e2 N otherwise).
+  for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < m; ++i) {
-      for (Eigen::Index c = 0; c < J.cols(); ++c)
-        Phi(j * m + i, c) = J(j * N + i * stride, c) * o.scale[static_cast<std::size_t>(c)] / delta;
-      yy[j * m + i] = Ra(i * stride, j) / delta;
-      dd[j * m + i] = 1.0;
       Jw.row(j * m + i) = J.row(j * N + i * stride) / norm[static_cast<std::size_t>(j)];
       rw[j * m + i] = Ra(i * stride, j) / norm[static_cast<std::size_t>(j)];
     }
-  }
+  const std::vector<double>& oe_delta = oe.delta;
+  const bool have_pui = oe.built;
   d.bound_note +=
       "; PUIs: strips of the output error linearised at the estimate (every " + std::to_string(stride) +
       "th sample), bound per output = 1.5 x the largest |residual| of the augmented model there";
-  PuiResult pr;
-  bool have_pui = false;
-  try {
-    pr = pui(FeasibleParameterSet::from_data(Phi, yy, dd));
-    have_pui = !pr.empty();
-  } catch (const std::exception& e) {
-    have_pui = false;
-    d.bound_note += std::string("; PUI computation failed: ") + e.what();
-  }
-  if (!have_pui) d.bound_note += "; the linearised strips were found inconsistent, no PUI";
-  if (have_pui) d.bound_note += pr.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
+  if (!have_pui) d.bound_note += "; " + oe.note;
+  if (have_pui) d.bound_note += oe.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
   // Equation-error PUIs where the effect's equation allows them (linear parameters, measured or
   // differentiable states): much less sensitive to what the model leaves out at high frequency.
   std::map<std::string, EquationErrorResult> ee_results;
@@ -108,23 +86,28 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const double s2 = rw.squaredNorm() / dof;
   Eigen::MatrixXd cov = (Jw.transpose() * Jw).completeOrthogonalDecomposition().pseudoInverse() * s2;
   for (std::size_t k = 0; k < chosen_candidates.size(); ++k) {
-    for (const auto& pn : chosen_candidates[k].parameters) {
+    for (std::size_t q = 0; q < chosen_candidates[k].parameters.size(); ++q) {
+      const std::string& pn = chosen_candidates[k].parameters[q];
       EffectParameter ep;
       ep.name = pn;
+      ep.role = chosen_candidates[k].roles[q];
+      ep.oe_delta = oe_delta;
       for (std::size_t i = 0; i < fr.size(); ++i) {
         if (current.parameters[static_cast<std::size_t>(fr[i])].name != pn) continue;
         const auto ii = static_cast<Eigen::Index>(i);
         ep.estimate = r.parameters[fr[i]];
         // The parameter's own bounds (min/max) hold too, so the interval is cut to them.
         const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
-        const Interval theta = Interval(ep.estimate) + pr.box[ii] * o.scale[i];  // outward rounded
-        ep.lo = ep.oe_lo = std::max(have_pui ? theta.lower() : -inf, mp.min);
-        ep.hi = ep.oe_hi = std::min(have_pui ? theta.upper() : inf, mp.max);
+        double oe_lo = -inf, oe_hi = inf;
+        if (have_pui) oe_lo = oe.lo[i], oe_hi = oe.hi[i];
+        ep.lo = ep.oe_lo = std::max(oe_lo, mp.min);
+        ep.hi = ep.oe_hi = std::min(oe_hi, mp.max);
         const auto ee = ee_results.find(chosen_candidates[k].equation);
         if (ee != ee_results.end() && ee->second.built)
           for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
             if (ee->second.parameters[static_cast<std::size_t>(c)] == pn) {
               ep.has_ee = true;
+              ep.ee_delta = ee->second.delta;
               ep.ee_lo = std::max(ee->second.box[c].lower(), mp.min);
               ep.ee_hi = std::min(ee->second.box[c].upper(), mp.max);
               // Each set holds the truth under its own bound, so under both the truth lies in

@@ -1,8 +1,12 @@
-// Stage 1 of the diagnosis: the file's values, the calibrated nominal model.
+// Stage 1 of the diagnosis: the file's values, the calibrated nominal model (several starts, so
+// that a stalled calibration is never blamed on missing physics), the noise level.
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "diagnosis/stages.hpp"
+#include "sets/diagnosis/equation_error.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -20,10 +24,46 @@ int screening_substeps(const ModelFile& model, const Recording& est, const Simul
   return final_substeps;
 }
 
+namespace {
+
+// Least-squares estimates from the equation error of every state equation that can be
+// reconstructed from the data (the start is the file's values elsewhere); empty if none.
+Eigen::VectorXd equation_error_start(const ModelFile& model, const Recording& est, const Eigen::VectorXd& p0) {
+  Eigen::VectorXd p = p0;
+  bool changed = false;
+  for (const auto& st : model.states) {
+    EquationErrorFit f;
+    try {
+      f = equation_error_fit(model, est, st.name);
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (!f.built) continue;
+    for (std::size_t k = 0; k < f.parameters.size(); ++k)
+      for (std::size_t i = 0; i < model.parameters.size(); ++i) {
+        const auto& mp = model.parameters[i];
+        if (mp.name != f.parameters[k] || mp.fixed || !std::isfinite(f.estimate[k])) continue;
+        p[static_cast<Eigen::Index>(i)] = std::clamp(f.estimate[k], mp.min, mp.max);
+        changed = true;
+      }
+  }
+  return changed ? p : Eigen::VectorXd();
+}
+
+// The first part of the record: a short horizon has fewer local minima of the output error.
+Recording head_of(const Recording& r, int rows) {
+  Recording h = r;
+  for (auto& c : h.columns) c.resize(static_cast<std::size_t>(rows));
+  return h;
+}
+
+}  // namespace
+
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   const Eigen::MatrixXd& Y = c.exact.measured();
+  const Eigen::Index N = Y.rows();
   c.say("simulating the nominal model");
-  Eigen::VectorXd p0 = values_of(c.model);
+  const Eigen::VectorXd p0 = values_of(c.model);
   {
     SimulationResult r = c.exact.simulate(p0);  // throws with the time if it blows up
     d.fit_start_estimation = fits(Y, r.outputs);
@@ -33,12 +73,45 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   NominalFit n;
   n.free = c.fast.free_parameters();
   for (int i : n.free) d.free_nominal.push_back(c.model.parameters[static_cast<std::size_t>(i)].name);
-  c.say("calibrating the nominal model's free parameters (" + std::to_string(c.options.screening_substeps) +
+  c.say("calibrating the nominal model's free parameters from several starts (" + std::to_string(c.options.screening_substeps) +
         " RK4 substeps while screening, " + std::to_string(c.options.final_substeps) + " for reported fits)");
   CalibrationOptions copt;
   copt.scale = scales_for(c.model, n.free, {});
-  // Calibrated with the screening step; the reported fits below use the full substeps.
-  n.calibration = calibrate(c.fast, p0, n.free, copt);
+  // Starts: the file's values; the equation-error least squares; the calibration on the first
+  // tenth of the record continued on all of it.
+  std::vector<std::pair<std::string, Eigen::VectorXd>> starts{{"file values", p0}};
+  if (!n.free.empty()) {
+    const Eigen::VectorXd ee = equation_error_start(c.model, c.estimation, p0);
+    if (ee.size()) starts.emplace_back("equation-error fit", ee);
+    const int rows = static_cast<int>(std::max<Eigen::Index>(std::min<Eigen::Index>(N, 200), N / 10));
+    if (rows < N) {
+      try {
+        Simulator head(c.model, head_of(c.estimation, rows), {c.options.screening_substeps});
+        const CalibrationResult h = calibrate(head, p0, n.free, copt);
+        if (h.ok) starts.emplace_back("first tenth of the record", h.parameters);
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  std::ostringstream note;
+  note << "calibrated from " << starts.size() << (starts.size() == 1 ? " start" : " starts") << ":";
+  double best_cost = 1e300, worst_cost = 0;
+  for (const auto& [label, s] : starts) {
+    const CalibrationResult r = calibrate(c.fast, s, n.free, copt);
+    note << " " << label << " -> ";
+    if (!r.ok) {
+      note << "blows up;";
+      continue;
+    }
+    note << "fit";
+    for (double f : r.fit) note << " " << fixed1(f) << " %";
+    note << ";";
+    worst_cost = std::max(worst_cost, r.cost);
+    if (r.cost < best_cost) best_cost = r.cost, n.calibration = r;
+  }
+  if (!n.calibration.ok) n.calibration = evaluate(c.fast, p0);
+  if (starts.size() > 1 && worst_cost > 1.5 * best_cost)
+    note << " the output-error cost has several minima; the best is used";
   d.nominal = c.model;
   store_values(d.nominal, n.calibration.parameters);
   n.simulation = c.exact.simulate(n.calibration.parameters);
@@ -48,6 +121,12 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
     d.fit_nominal_validation = fits(c.exact_validation->measured(), n.validation_outputs);
   }
   n.cost = cost_of(d.fit_nominal_estimation);
+  for (std::size_t j = 0; j < d.fit_nominal_estimation.size(); ++j)
+    if (d.fit_nominal_estimation[j] < 50) d.nominal_far = true;
+  if (d.nominal_far)
+    note << " the nominal model cannot be brought near the data (best fit below 50 % on "
+         << (d.fit_nominal_estimation.size() > 1 ? "an output" : "the output") << ")";
+  d.nominal_note = note.str();
   return n;
 }
 

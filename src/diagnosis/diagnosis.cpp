@@ -1,5 +1,6 @@
 #include "sets/diagnosis/diagnosis.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <memory>
@@ -13,30 +14,45 @@ using namespace diagnosis_stage;
 
 namespace {
 
-// The answer in one sentence, and whether nothing is missing.
-void conclude(const NominalFit& nominal, const NoiseFloor& noise, const DiagnosisOptions& opt, Diagnosis& d) {
-  if (d.effects.empty()) {
-    if (nominal.cost <= opt.noise_floor_factor * noise.cost || !d.nothing_missing) {
-      // Either within the noise, or no catalogue effect helps: never invent one.
-      d.nothing_missing = nominal.cost <= opt.noise_floor_factor * noise.cost;
-    }
-    d.verdict = d.nothing_missing
-                    ? "No physics is missing: the calibrated nominal model explains the data to within the noise."
-                    : "No effect of the catalogue explains the remaining mismatch; no physics is added.";
-    if (!d.nothing_missing) {
-      // Is what remains distinguishable from noise at all? A small relative misfit means the model is fine.
-      bool all_good = true;
-      for (double f : d.fit_nominal_estimation) all_good = all_good && f > 90;
-      if (all_good) {
-        d.nothing_missing = true;
-        d.verdict = "No physics is missing: no catalogue effect improves the calibrated nominal model beyond the noise.";
-      }
-    }
-  } else {
+// Where the mismatch is, in one line (windows, regions, frequency band).
+std::string where_of(const Diagnosis& d) {
+  std::ostringstream o;
+  std::vector<MismatchWindow> ws = d.windows;
+  std::sort(ws.begin(), ws.end(), [](const auto& a, const auto& b) { return a.rms * (a.end - a.start) > b.rms * (b.end - b.start); });
+  for (std::size_t i = 0; i < std::min<std::size_t>(2, ws.size()); ++i)
+    o << (i ? ", " : "largest in ") << ws[i].output << " at t = " << fmt(ws[i].start, 4) << " .. " << fmt(ws[i].end, 4) << " s";
+  for (std::size_t i = 0; i < std::min<std::size_t>(2, d.regions.size()); ++i)
+    o << (o.tellp() > 0 ? "; " : "") << "concentrated " << d.regions[i].description << " (" << fixed1(100 * d.regions[i].residual_share)
+      << " % of it in " << fixed1(100 * d.regions[i].sample_share) << " % of the samples)";
+  for (const auto& b : d.bands)
+    o << (o.tellp() > 0 ? "; " : "") << "residual of " << b.output << " in " << fmt(b.lo_hz) << " .. " << fmt(b.hi_hz) << " Hz";
+  return o.str();
+}
+
+// The answer: nothing missing (both residual tests agree), missing effects, or a real mismatch no
+// catalogue effect explains.
+void conclude(Diagnosis& d) {
+  if (!d.effects.empty()) {
+    d.nothing_missing = false;
     d.verdict = "Missing physics: ";
     for (std::size_t k = 0; k < d.effects.size(); ++k) d.verdict += (k ? ", " : "") + d.effects[k].name + " (" + d.effects[k].equation + ")";
-    d.verdict += ".";
+    d.verdict += d.final_tests.within_noise() ? "; the augmented model is within the noise."
+                                              : "; a mismatch beyond the noise remains (" + d.final_tests.summary() + ").";
+    return;
   }
+  d.nothing_missing = d.nominal_tests.within_noise();
+  if (d.nothing_missing) {
+    d.verdict = "No physics is missing: the calibrated nominal model is within the noise (" + d.nominal_tests.summary() + ").";
+    return;
+  }
+  d.unexplained = true;
+  d.where = where_of(d);
+  const std::string what = d.nominal_tests.falsified
+                               ? "The mismatch is real but no catalogue effect explains it ("
+                               : "The residual is inside the noise bound but not white (coloured measurement noise, or a "
+                                 "mismatch that no catalogue effect explains; ";
+  d.verdict = what + d.nominal_tests.summary() + ")" + (d.where.empty() ? "" : "; " + d.where) +
+              (d.nominal_far ? "; " + d.nominal_note : "") + ".";
 }
 
 }  // namespace
@@ -66,11 +82,21 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
 
   const NominalFit nominal = calibrate_nominal(c, d);                          // 1.
   const NoiseFloor noise = noise_floor(c, nominal, d);
+  d.noise_sigma = noise.sigma;
+  for (const auto& n : d.noise)
+    d.noise_note += (d.noise_note.empty() ? "" : "; ") + n.output + ": " + noise_method_name(n.estimate.method);
+  d.nominal_tests = test_residual(exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
   test_data_hypothesis(c, nominal, noise, d);                                   // about the data, not physics
   locate_mismatch(c, nominal, noise, d);                                        // 2.
   const HypothesisSearch search = search_hypotheses(c, nominal, noise, d);      // 3.
   augment(c, nominal, search, d);                                               // 4.
-  conclude(nominal, noise, opt, d);
+  d.final_tests = d.nominal_tests;
+  if (!d.effects.empty()) {
+    Simulator aug(d.augmented, est, {opt.final_substeps});
+    const Eigen::VectorXd p = aug.parameter_values();
+    d.final_tests = test_residual(aug, p, aug.simulate(p), noise.sigma);
+  }
+  conclude(d);
 
   d.time_estimation = Eigen::Map<const Eigen::VectorXd>(exact.time().data(), exact.samples());
   d.measured_estimation = exact.measured();

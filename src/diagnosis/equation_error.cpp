@@ -2,6 +2,7 @@
 
 #include <boost/algorithm/string/classification.hpp>
 #include <boost/algorithm/string/trim.hpp>
+#include <Eigen/QR>
 #include <muParser.h>
 
 #include <algorithm>
@@ -32,12 +33,13 @@ std::string trimmed(const std::string& s) { return boost::algorithm::trim_copy_i
 
 }  // namespace
 
-EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& data, const std::string& state,
-                                       const EquationErrorOptions& options) {
-  EquationErrorResult res;
+std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile& model, const Recording& data,
+                                                               const std::string& state, const std::vector<int>& windows) {
+  std::vector<EquationErrorRegression> out;
   auto fail = [&](const std::string& why) {
-    res.note = "equation-error PUI not built for \"" + state + "\": " + why;
-    return res;
+    EquationErrorRegression res;
+    res.note = "equation-error regression not built for \"" + state + "\": " + why;
+    return std::vector<EquationErrorRegression>{res};
   };
   const std::string* f_text = model.derivative(state);
   if (!f_text) return fail("not a state equation");
@@ -128,11 +130,11 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
   mu::Parser f;
   compile(f, *f_text);
 
-  // One attempt per integration window w (samples).
-  auto attempt = [&](int w) -> EquationErrorResult {
-  EquationErrorResult res;
+  // One regression per integration window w (samples).
+  auto attempt = [&](int w) -> EquationErrorRegression {
+  EquationErrorRegression res;
   auto fail = [&](const std::string& why) {
-    res.note = "equation-error PUI not built for \"" + state + "\": " + why;
+    res.note = "equation-error regression not built for \"" + state + "\": " + why;
     return res;
   };
   Eigen::VectorXd D = Eigen::VectorXd::Zero(N);  // the integrated derivative, exact in measurements
@@ -319,70 +321,112 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
       if (inertia < 0) e += D[t];
       resid[r] = e;
     }
-    const double delta = std::max(options.bound_factor * resid.cwiseAbs().maxCoeff(), 1e-300);
-    // Scaled unknowns z = theta / scale and rows in units of delta keep the LPs well conditioned.
     std::vector<int> unknowns;
     if (inertia >= 0) unknowns.push_back(inertia);
     for (int k : linear) unknowns.push_back(k);
-    for (Eigen::Index r = 0; r < m; ++r) {
-      for (Eigen::Index c = 0; c < p; ++c)
-        Phi(r, c) = Phi(r, c) * Interval(scale[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(c)])]) / Interval(delta);
-      Y[r] = (Y[r] + Interval(-delta, delta)) / Interval(delta);
-    }
-    PuiOptions po;
-    po.orthants = p <= 5 ? OrthantSelection::all : OrthantSelection::remark2;
-    const PuiResult pr = pui(FeasibleParameterSet::from_interval_data(Phi, Y), po);
-    if (pr.empty()) return fail("the strips are inconsistent under the bound (the model is falsified there)");
     res.built = true;
-    res.guaranteed = pr.guaranteed;
-    res.delta = delta;
+    res.Phi = Phi;
+    res.Y = Y;
+    res.Phi_mid.resize(m, p);
+    res.Y_mid.resize(m);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      for (Eigen::Index c = 0; c < p; ++c) res.Phi_mid(r, c) = midpoint(Phi(r, c));
+      res.Y_mid[r] = midpoint(Y[r]);
+    }
+    res.residual = resid;
+    res.has_inertia = inertia >= 0;
     res.rows = static_cast<int>(m);
     res.window = w;
     res.order = order;
-    res.box.resize(p);
-    for (Eigen::Index c = 0; c < p; ++c) {
-      res.parameters.push_back(model.parameters[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(c)])].name);
-      res.box[c] = pr.box[c] * Interval(scale[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(c)])]);
+    for (int u : unknowns) {
+      res.parameters.push_back(model.parameters[static_cast<std::size_t>(u)].name);
+      res.scale.push_back(scale[static_cast<std::size_t>(u)]);
     }
     std::string dnote;
     for (const auto& z : dz) dnote += ", " + z + " = d" + derivative_of[z] + "/dt +- " + std::to_string(rho[z]);
-    res.note = "equation-error PUI of \"" + state + "\": integrated " + std::to_string(order) + "x over " +
-               std::to_string(w) + " samples, " + std::to_string(m) + " strips" + dnote +
-               " (3 sigma of the central difference over +-" + std::to_string(wv) +
-               " samples), equation-error bound = " + [&] { std::ostringstream os; os << options.bound_factor; return os.str(); }() +
-               " x its largest value at the estimate";
+    res.note = "integrated " + std::to_string(order) + "x over " + std::to_string(w) + " samples, " + std::to_string(m) +
+               " strips" + dnote + (dz.empty() ? "" : " (3 sigma of the central difference over +-" + std::to_string(wv) + " samples)");
   } catch (const mu::Parser::exception_type& e) {
     return fail("expression evaluation failed: " + e.GetMsg());
   }
   return res;
   };
-
-  // Windows from N/500 to N/25 samples: short windows keep more of the record's detail, long ones
-  // average the measurement noise of the differences. Each PUI holds under its own stated bound;
-  // the one with the smallest total relative width is reported.
-  std::vector<int> windows;
-  if (options.window > 0) {
-    windows.push_back(options.window);
-  } else {
-    for (int div : {500, 200, 100, 50, 25}) {
-      const int w = std::clamp(N / div, 4, 500);
-      if (N >= 8 * w && std::find(windows.begin(), windows.end(), w) == windows.end()) windows.push_back(w);
-    }
-  }
-  if (windows.empty() || N < 8 * windows.front()) return fail("the record is too short for the integration window");
-  double best = inf;
   for (int w : windows) {
-    EquationErrorResult r = attempt(w);
-    if (!r.built) {
-      if (!res.built) res = r;
+    if (w < 1 || N < 8 * w) {
+      EquationErrorRegression r;
+      r.note = "equation-error regression not built for \"" + state + "\": the record is too short for a window of " +
+               std::to_string(w) + " samples";
+      out.push_back(r);
       continue;
     }
+    out.push_back(attempt(w));
+  }
+  return out;
+}
+
+std::vector<int> equation_error_windows(int N) {
+  // Windows from N/500 to N/25 samples: short windows keep more of the record's detail, long ones
+  // average the measurement noise of the differences.
+  std::vector<int> windows;
+  for (int div : {500, 200, 100, 50, 25}) {
+    const int w = std::clamp(N / div, 4, 500);
+    if (N >= 8 * w && std::find(windows.begin(), windows.end(), w) == windows.end()) windows.push_back(w);
+  }
+  return windows;
+}
+
+EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& data, const std::string& state,
+                                       const EquationErrorOptions& options) {
+  EquationErrorResult res;
+  const std::vector<int> windows = options.window > 0 ? std::vector<int>{options.window} : equation_error_windows(data.rows());
+  if (windows.empty()) {
+    res.note = "equation-error PUI not built for \"" + state + "\": the record is too short for the integration window";
+    return res;
+  }
+  // Each PUI holds under its own stated bound; the one with the smallest total relative width is
+  // reported.
+  double best = inf;
+  for (const EquationErrorRegression& g : equation_error_regressions(model, data, state, windows)) {
+    if (!g.built) {
+      if (!res.built) res.note = g.note;
+      continue;
+    }
+    const Eigen::Index m = g.Phi.rows(), p = g.Phi.cols();
+    const double delta = std::max(options.bound_factor * g.residual.cwiseAbs().maxCoeff(), 1e-300);
+    // Scaled unknowns z = theta / scale and rows in units of delta keep the LPs well conditioned.
+    IntervalMatrix Phi = g.Phi;
+    IntervalVector Y = g.Y;
+    for (Eigen::Index r = 0; r < m; ++r) {
+      for (Eigen::Index c = 0; c < p; ++c) Phi(r, c) = Phi(r, c) * Interval(g.scale[static_cast<std::size_t>(c)]) / Interval(delta);
+      Y[r] = (Y[r] + Interval(-delta, delta)) / Interval(delta);
+    }
+    PuiOptions po;
+    po.orthants = p <= 5 ? OrthantSelection::all : OrthantSelection::remark2;
+    const PuiResult pr = pui(FeasibleParameterSet::from_interval_data(Phi, Y), po);
+    if (pr.empty()) {
+      if (!res.built)
+        res.note = "equation-error PUI not built for \"" + state + "\": the strips are inconsistent under the bound (the model is falsified there)";
+      continue;
+    }
+    EquationErrorResult r;
+    r.built = true;
+    r.guaranteed = pr.guaranteed;
+    r.delta = delta;
+    r.rows = g.rows;
+    r.window = g.window;
+    r.order = g.order;
+    r.parameters = g.parameters;
+    r.box.resize(p);
     double width = 0;
-    for (Eigen::Index c = 0; c < r.box.size(); ++c) {
-      const auto& nm = r.parameters[static_cast<std::size_t>(c)];
-      const double v = std::abs(model.parameter(nm)->value);
+    for (Eigen::Index c = 0; c < p; ++c) {
+      r.box[c] = pr.box[c] * Interval(g.scale[static_cast<std::size_t>(c)]);
+      const double v = std::abs(model.parameter(g.parameters[static_cast<std::size_t>(c)])->value);
       width += (r.box[c].upper() - r.box[c].lower()) / (v > 0 ? v : 1.0);
     }
+    std::ostringstream bf;
+    bf << options.bound_factor;
+    r.note = "equation-error PUI of \"" + state + "\": " + g.note + ", equation-error bound = " + bf.str() +
+             " x its largest value at the estimate";
     if (!res.built || width < best) {
       best = width;
       res = r;
@@ -390,6 +434,37 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
   }
   if (res.built) res.note += "; windows tried: " + std::to_string(windows.size()) + ", the narrowest reported";
   return res;
+}
+
+EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window) {
+  EquationErrorFit fit;
+  const int w = window > 0 ? window : std::clamp(data.rows() / 200, 4, 500);
+  const EquationErrorRegression g = equation_error_regressions(model, data, state, {w}).front();
+  fit.note = g.note;
+  if (!g.built) return fit;
+  // Least squares in scaled unknowns; a homogeneous regression (nothing known on the right, an
+  // inertia present) fixes the inertia at the model's value: the scale is not identifiable.
+  Eigen::MatrixXd A = g.Phi_mid;
+  Eigen::VectorXd y = g.Y_mid;
+  for (Eigen::Index c = 0; c < A.cols(); ++c) A.col(c) *= g.scale[static_cast<std::size_t>(c)];
+  Eigen::Index first = 0;
+  if (g.has_inertia && y.norm() <= 1e-9 * A.col(0).norm()) {
+    y -= A.col(0) * (model.parameter(g.parameters.front())->value / g.scale.front());
+    first = 1;
+  }
+  const Eigen::MatrixXd Af = A.rightCols(A.cols() - first);
+  if (Af.cols() == 0) return fit;
+  const Eigen::VectorXd z = Af.completeOrthogonalDecomposition().solve(y);
+  if (!z.allFinite()) return fit;
+  fit.built = true;
+  for (Eigen::Index c = 0; c < A.cols(); ++c) {
+    fit.parameters.push_back(g.parameters[static_cast<std::size_t>(c)]);
+    fit.estimate.push_back(c < first ? model.parameter(g.parameters.front())->value
+                                     : z[c - first] * g.scale[static_cast<std::size_t>(c)]);
+  }
+  const double yy = (y.array() - y.mean()).matrix().squaredNorm();
+  fit.relative_residual = yy > 0 ? std::sqrt((y - Af * z).squaredNorm() / yy) : 0.0;
+  return fit;
 }
 
 }  // namespace sets

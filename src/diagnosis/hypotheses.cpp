@@ -1,15 +1,21 @@
-// Stage 3 of the diagnosis: every catalogue effect, wherever it can enter, as a competing
-// hypothesis calibrated with the free parameters; the acceptable ones added greedily (fewest
-// terms that explain the data).
+// Stage 3 of the diagnosis: every catalogue effect, wherever the model's structure lets it enter,
+// screened by least squares (screening.hpp); the best few refined by output error from several
+// starts; the ones that pass every documented rule (acceptance.hpp) compete, the sparsest
+// explanation wins; added greedily until the model is within the noise or nothing passes.
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "diagnosis/stages.hpp"
+#include "sets/core/error.hpp"
+#include "sets/diagnosis/screening.hpp"
 #include "sets/numeric/glpk_environment.hpp"
 
 namespace sets::diagnosis_stage {
@@ -17,59 +23,96 @@ namespace sets::diagnosis_stage {
 namespace {
 
 using Scales = std::vector<std::pair<std::string, double>>;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double inf = std::numeric_limits<double>::infinity();
 
 struct Trial {
   Candidate cand;
   ModelFile model;  // calibrated
-  double cost = 1e300, cost_val = 1e300;
-  ModelFile neutral_model;           // the calibrated model with the effect switched off
-  double cost_neutral = 1e300, cost_neutral_val = 1e300;
-  std::vector<double> fit, fit_val;
+  double cost = 1e300, cost_val = kNaN;
+  double cost_neutral = kNaN, cost_neutral_val = kNaN;
+  ModelFile neutral_model;  // the calibrated model with the effect switched off
+  std::vector<double> part_neutral;  // two effects at once: the cost with each one switched off
   bool ok = false;
+  double screening_gain = 0;
+  std::vector<RuleCheck> rules;
+  bool accepted = false;
+  std::string not_beyond;  // passed against the current model, not against this special case of it
 };
 
-// Calibrates one hypothesis (with every free parameter), and evaluates it with its own term
-// switched off at the calibrated point.
-Trial run_trial(const Context& c, Candidate cand, const Scales& known_scales) {
-  const int substeps = c.options.screening_substeps;
-  Trial t;
-  t.cand = std::move(cand);
+double validation_cost(const Context& c, const ModelFile& m) {
+  if (!c.validation) return kNaN;
   try {
-    if (t.cand.restart)
-      for (auto& q : t.cand.model.parameters)
-        if (const auto* orig = c.model.parameter(q.name); orig && !q.fixed) q.value = orig->value;
-    Simulator s(t.cand.model, c.estimation, {substeps});
+    Simulator sv(m, *c.validation, {c.options.screening_substeps});
+    const auto r = evaluate(sv, sv.parameter_values());
+    return r.ok ? r.cost : 1e300;
+  } catch (const std::exception&) {
+    return 1e300;
+  }
+}
+
+// Output-error calibration of one hypothesis from each of its starts (the best kept), then its
+// cost with its own term switched off at the calibrated point.
+Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::VectorXd>& starts, const Scales& known) {
+  Trial t;
+  t.cand = cand;
+  try {
+    Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
     const std::vector<int> fr = s.free_parameters();
-    auto ks = known_scales;
-    for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) ks.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
+    auto ks = known;
+    for (std::size_t k = 0; k < cand.parameters.size(); ++k) ks.emplace_back(cand.parameters[k], cand.scales[k]);
     CalibrationOptions o;
-    o.scale = scales_for(t.cand.model, fr, ks);
-    o.max_evaluations = 40 * static_cast<int>(fr.size() + 1);
-    const auto r = calibrate(s, s.parameter_values(), fr, o);
-    if (!r.ok) return t;
-    t.ok = true;
-    t.cost = r.cost;
-    t.fit = r.fit;
-    t.model = t.cand.model;
-    store_values(t.model, r.parameters);
-    if (c.validation) {
-      Simulator sv(t.model, *c.validation, {substeps});
-      const auto rv = evaluate(sv, r.parameters);
-      t.cost_val = rv.ok ? rv.cost : 1e300;
-      t.fit_val = rv.fit;
+    o.scale = scales_for(cand.model, fr, ks);
+    o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
+    std::vector<Eigen::VectorXd> from = starts;
+    if (from.empty()) from.push_back(s.parameter_values());
+    if (cand.restart) {  // from the file's values: the calibrated nominal may be far off
+      Eigen::VectorXd p = s.parameter_values();
+      for (std::size_t i = 0; i < cand.model.parameters.size(); ++i)
+        if (const auto* orig = c.model.parameter(cand.model.parameters[i].name); orig && !cand.model.parameters[i].fixed)
+          p[static_cast<Eigen::Index>(i)] = orig->value;
+      from.push_back(p);
     }
-    // The same parameters with the effect switched off: what the effect itself contributes.
-    if (!t.cand.parameters.empty()) {
-      t.neutral_model = t.model;
-      for (std::size_t k = 0; k < t.cand.parameters.size(); ++k)
-        if (!std::isnan(t.cand.neutral[k])) t.neutral_model.parameter(t.cand.parameters[k])->value = t.cand.neutral[k];
-      const auto rn = evaluate(s, values_of(t.neutral_model));
-      t.cost_neutral = rn.ok ? rn.cost : 1e300;
-      if (c.validation && rn.ok) {
-        Simulator sv(t.neutral_model, *c.validation, {substeps});
-        const auto rv = evaluate(sv, values_of(t.neutral_model));
-        t.cost_neutral_val = rv.ok ? rv.cost : 1e300;
+    // Multi-start (the screening's best grid points, its least-squares step, the equation-error
+    // estimate); each with the budget of 80 Jacobians: with 30 the Stribeck law (three parameters
+    // on a rough cost) stopped at a third of the misfit reduction it reaches.
+    CalibrationResult best;
+    for (const auto& p : from) {
+      const auto r = calibrate(s, p, fr, o);
+      if (r.ok && (!best.ok || r.cost < best.cost)) best = r;
+    }
+    if (!best.ok) return t;
+
+    t.ok = true;
+    t.cost = best.cost;
+    t.model = cand.model;
+    store_values(t.model, best.parameters);
+    t.cost_val = validation_cost(c, t.model);
+    // Switched off: every new parameter at its neutral value (NaN: irrelevant once the others are).
+    auto switched_off = [&](const Candidate& part) {
+      ModelFile m = t.model;
+      bool any = false;
+      for (std::size_t k = 0; k < part.parameters.size(); ++k)
+        if (!std::isnan(part.neutral[k])) m.parameter(part.parameters[k])->value = part.neutral[k], any = true;
+      return std::make_pair(m, any);
+    };
+    if (cand.parts.empty()) {
+      const auto [m, any] = switched_off(cand);
+      if (any) {
+        t.neutral_model = m;
+        const auto rn = evaluate(s, values_of(m));
+        t.cost_neutral = rn.ok ? rn.cost : 1e300;
+        if (rn.ok) t.cost_neutral_val = validation_cost(c, m);
       }
+    } else {
+      // Two at once: each must matter on its own; the rule judges the weaker one.
+      for (const auto& part : cand.parts) {
+        const auto [m, any] = switched_off(part);
+        const auto rn = evaluate(s, values_of(m));
+        t.part_neutral.push_back(!any ? kNaN : rn.ok ? rn.cost : 1e300);
+      }
+      for (double v : t.part_neutral)
+        if (std::isfinite(v) && !(v >= t.cost_neutral)) t.cost_neutral = v;
     }
   } catch (const std::exception&) {
     t.ok = false;  // a hypothesis that cannot be simulated loses
@@ -77,189 +120,443 @@ Trial run_trial(const Context& c, Candidate cand, const Scales& known_scales) {
   return t;
 }
 
-std::vector<Trial> run_trials(const Context& c, const std::vector<Candidate>& cands, const Scales& known_scales) {
-  std::vector<Trial> trials(cands.size());
+template <class Job>
+void parallel(int threads, std::size_t jobs, Job job) {
   std::atomic<std::size_t> next{0};
-  std::mutex mu;
   auto worker = [&] {
     const GlpkThreadEnvironment glpk;  // freed when the worker ends
-    for (std::size_t i; (i = next++) < cands.size();) {
-      Trial t = run_trial(c, cands[i], known_scales);
-      std::lock_guard<std::mutex> lock(mu);
-      trials[i] = std::move(t);
-    }
+    for (std::size_t i; (i = next++) < jobs;) job(i);
   };
   std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, c.options.threads); ++k) pool.emplace_back(worker);
+  for (int k = 0; k < std::max(1, threads); ++k) pool.emplace_back(worker);
   for (auto& th : pool) th.join();
-  return trials;
 }
 
-// Time delay: ranked by a short calibration on the first fifth of the record (a delay shifts the
-// optimum of the other parameters, so an uncalibrated ranking prefers too short a delay); the
-// best two per actuator compete with the other hypotheses.
-std::vector<Candidate> keep_best_delays(const Context& c, std::vector<Candidate> cands, const Scales& known_scales) {
-  const Eigen::Index N = c.exact.samples();
-  Recording head = c.estimation;
-  const std::size_t rows = static_cast<std::size_t>(std::max<Eigen::Index>(std::min<Eigen::Index>(N, 200), N / 5));
-  for (auto& col : head.columns) col.resize(rows);
-  std::vector<Candidate> kept;
-  std::map<std::string, std::vector<std::pair<double, std::size_t>>> ranked;
-  for (std::size_t i = 0; i < cands.size(); ++i) {
-    if (cands[i].effect != "time_delay") continue;
-    if (cands[i].delay_samples >= static_cast<int>(rows) / 10) continue;
-    Simulator s(cands[i].model, head, {c.options.screening_substeps});
-    CalibrationOptions o;
-    const auto fr = s.free_parameters();
-    o.scale = scales_for(cands[i].model, fr, known_scales);
-    o.max_evaluations = 10 * static_cast<int>(fr.size() + 1);
-    const auto r = calibrate(s, s.parameter_values(), fr, o);
-    ranked[cands[i].equation].push_back({r.ok ? r.cost : 1e300, i});
-  }
-  for (auto& [a, list] : ranked) {
-    std::sort(list.begin(), list.end());
-    for (std::size_t k = 0; k < std::min<std::size_t>(2, list.size()); ++k) kept.push_back(cands[list[k].second]);
-  }
-  for (auto& cand : cands)
-    if (cand.effect != "time_delay") kept.push_back(std::move(cand));
-  return kept;
-}
-
-// The delay grid is coarse: try every whole number of samples between the chosen one's neighbours.
-void refine_delay(const Context& c, const ModelFile& current, const Scales& known_scales, Trial& t) {
+// The delay grid is coarse: every whole number of samples between the screened one's neighbours
+// is screened again by simulation (cheap), the best is refined.
+Candidate best_delay(const Context& c, const ModelFile& current, const Candidate& chosen, const std::vector<double>& bound) {
   static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
-  const Eigen::Index N = c.exact.samples();
-  const int n0 = t.cand.delay_samples;
+  const int n0 = chosen.delay_samples;
   const auto it = std::find(grid.begin(), grid.end(), n0);
   const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
-  const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 : *(it + 1) - 1;
-  for (int n = lo; n <= hi; ++n) {
-    if (n == n0 || n >= N / 10) continue;
-    Candidate cand = delay_candidate(current, t.cand.equation, n);
-    for (auto& q : cand.model.parameters) q.value = t.model.parameter(q.name)->value;
-    Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
-    CalibrationOptions o;
-    const auto fr = s.free_parameters();
-    o.scale = scales_for(cand.model, fr, known_scales);
-    o.max_evaluations = 10 * static_cast<int>(fr.size() + 1);
-    const auto r = calibrate(s, s.parameter_values(), fr, o);
-    if (r.ok && r.cost < t.cost) {
-      t.cand = cand;
-      t.model = cand.model;
-      store_values(t.model, r.parameters);
-      t.cost = r.cost;
-      t.fit = r.fit;
-      if (c.validation) {
-        Simulator sv(t.model, *c.validation, {c.options.screening_substeps});
-        const auto rv = evaluate(sv, r.parameters);
-        t.cost_val = rv.ok ? rv.cost : 1e300;
+  const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 + 8 : *(it + 1) - 1;
+  std::vector<Candidate> around;
+  for (int n = lo; n <= hi; ++n)
+    if (n < c.exact.samples() / 10) around.push_back(delay_candidate(current, chosen.equation, n));
+  if (around.size() < 2) return chosen;
+  ScreeningOptions so;
+  so.substeps = c.options.screening_substeps;
+  so.threads = c.options.threads;
+  so.noise_bound = bound;
+  so.equation_error = false;
+  const Screening s = screen_hypotheses(current, c.estimation, around, so);
+  return s.ranked.empty() ? chosen : s.ranked.front().candidate;
+}
+
+std::vector<std::string> excluded_by(const std::vector<std::string>& chosen) {
+  static const std::set<std::string> sign_laws = {"coulomb_friction", "stribeck_friction", "asymmetric_friction"};
+  std::vector<std::string> out = chosen;
+  for (const auto& e : chosen)
+    if (sign_laws.count(e)) out.insert(out.end(), sign_laws.begin(), sign_laws.end());  // one friction law
+  return out;
+}
+
+std::vector<Candidate> parts_of(const Candidate& c) { return c.parts.empty() ? std::vector<Candidate>{c} : c.parts; }
+
+using Fixed = std::vector<std::pair<std::string, double>>;
+
+// `general` reduces to `special` by fixing some of its parameters: each part of `general` stays
+// what it is or becomes one of its catalogue special cases (one effect or several, at its place),
+// together they are the parts of `special`, and at least one part is strictly richer. `fixed`:
+// general's parameters (by name) fixed on the way, with their values.
+bool nests(const Candidate& general, const Candidate& special, Fixed* fixed = nullptr) {
+  const std::vector<Candidate> g = parts_of(general), s = parts_of(special);
+  std::vector<bool> used(s.size(), false);
+  std::vector<const SpecialCase*> via(g.size(), nullptr);
+  std::function<bool(std::size_t, bool)> match = [&](std::size_t k, bool richer) {
+    if (k == g.size()) return richer && std::find(used.begin(), used.end(), false) == used.end();
+    std::vector<std::size_t> here;  // the parts of `special` still free at this part's place
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (!used[i] && s[i].equation == g[k].equation) here.push_back(i);
+    for (unsigned mask = 1; mask < (1u << here.size()); ++mask) {
+      std::vector<std::string> effects;
+      for (std::size_t b = 0; b < here.size(); ++b)
+        if (mask & (1u << b)) effects.push_back(s[here[b]].effect);
+      const bool same = effects.size() == 1 && effects.front() == g[k].effect;
+      via[k] = same ? nullptr : find_special_case(effects, g[k].effect);
+      if (!same && !via[k]) continue;
+      for (std::size_t b = 0; b < here.size(); ++b)
+        if (mask & (1u << b)) used[here[b]] = true;
+      if (match(k + 1, richer || !same)) return true;
+      for (std::size_t b = 0; b < here.size(); ++b)
+        if (mask & (1u << b)) used[here[b]] = false;
+    }
+    return false;
+  };
+  if (!match(0, false)) return false;
+  if (fixed) {
+    fixed->clear();
+    for (std::size_t k = 0; k < g.size(); ++k)
+      if (via[k])
+        for (const auto& [role, value] : via[k]->fixed)
+          for (std::size_t q = 0; q < g[k].roles.size(); ++q)
+            if (g[k].roles[q] == role) fixed->emplace_back(g[k].parameters[q], value);
+  }
+  return true;
+}
+
+// The special cases of a one-effect hypothesis that no calibrated hypothesis stands for, built on
+// `current` (a set of two: the second generated on the first's model, as screening pairs them).
+std::vector<Candidate> missing_special_cases(const Context& c, const ModelFile& current, const SimulationResult& sim,
+                                             const Candidate& general, const std::vector<const Candidate*>& calibrated) {
+  std::vector<Candidate> out;
+  const PhysicsEffect* e = general.parts.empty() ? find_effect(general.effect) : nullptr;
+  if (!e) return out;
+  auto find = [&](const std::vector<Candidate>& in, const std::string& effect) -> const Candidate* {
+    for (const auto& k : in)
+      if (k.effect == effect && k.equation == general.equation) return &k;
+    return nullptr;
+  };
+  for (const auto& sc : e->special_cases) {
+    std::vector<std::string> set = sc.effects;
+    std::sort(set.begin(), set.end());
+    bool have = false;
+    for (const Candidate* k : calibrated) {
+      std::vector<std::string> effects;
+      for (const auto& part : parts_of(*k)) effects.push_back(part.effect);
+      std::sort(effects.begin(), effects.end());
+      have = have || (effects == set && nests(general, *k));
+    }
+    if (have || set.empty() || set.size() > 2) continue;
+    try {
+      const std::vector<Candidate> on_current = generate_candidates(current, sim, c.estimation);
+      const Candidate* first = find(on_current, set[0]);
+      if (!first || set.size() == 1) {
+        if (first) out.push_back(*first);
+        continue;
       }
+      Simulator s(first->model, c.estimation, {c.options.screening_substeps});
+      const std::vector<Candidate> on_first = generate_candidates(first->model, s.simulate(s.parameter_values()), c.estimation);
+      if (const Candidate* second = find(on_first, set[1])) out.push_back(combine_candidates(*first, *second));
+    } catch (const std::exception&) {
+      // not buildable here: the richer law is judged against the special cases that were
     }
   }
+  return out;
+}
+
+// The shortlist: the best `k` by score (one delay per actuator), those consistent with the noise
+// bound, the best two by equation error, and the special cases of every one of those (so that a
+// richer law is always judged against the law it contains, hypotheses.cpp's nested rule).
+std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
+  std::vector<const ScreenedHypothesis*> out;
+  std::set<std::string> delay_seen;
+  auto take = [&](const ScreenedHypothesis& h) {
+    if (!std::isfinite(h.cost) || std::find(out.begin(), out.end(), &h) != out.end()) return false;
+    if (h.candidate.effect == "time_delay") {
+      if (delay_seen.count(h.candidate.equation)) return false;
+      delay_seen.insert(h.candidate.equation);
+    }
+    out.push_back(&h);
+    return true;
+  };
+  int taken = 0;
+  for (const auto& h : s.ranked)
+    if (taken < k && take(h)) ++taken;
+  int extra = 0;
+  for (const auto& h : s.ranked)
+    if (extra < 2 && h.consistent && take(h)) ++extra;
+  std::vector<const ScreenedHypothesis*> by_ee;
+  for (const auto& h : s.ranked)
+    if (std::isfinite(h.ee_gain) && h.ee_gain > 0.1) by_ee.push_back(&h);
+  std::sort(by_ee.begin(), by_ee.end(), [](auto* a, auto* b) { return a->ee_gain > b->ee_gain; });
+  for (std::size_t i = 0; i < std::min<std::size_t>(2, by_ee.size()); ++i) take(*by_ee[i]);
+  const std::size_t listed = out.size();
+  for (std::size_t i = 0; i < listed; ++i)
+    for (const auto& h : s.ranked)
+      if (nests(out[i]->candidate, h.candidate)) take(h);
+  return out;
 }
 
 }  // namespace
 
 HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
   const DiagnosisOptions& opt = c.options;
-  const Recording* val = c.validation;
-  const double floor_cost = noise.cost;
   HypothesisSearch h;
-  ModelFile& current = h.current;
-  current = d.nominal;
-  double cost_cur = cost_of(evaluate(c.fast, nominal.calibration.parameters).fit);
-  double cost_cur_val = 0;
-  if (val) {
-    Simulator fast_val(c.model, *val, SimulationOptions{opt.screening_substeps});
-    cost_cur_val = cost_of(evaluate(fast_val, nominal.calibration.parameters).fit);
-  }
+  h.current = d.nominal;
   std::vector<std::string> chosen;
-  d.nothing_missing = nominal.cost <= opt.noise_floor_factor * floor_cost;
-  for (int round = 0; round < opt.max_effects && !d.nothing_missing; ++round) {
-    if (cost_cur <= opt.noise_floor_factor * floor_cost) break;
-    Simulator cur_sim(current, c.estimation, {opt.screening_substeps});
-    const SimulationResult cur_res = cur_sim.simulate(values_of(current));
-    std::vector<std::string> exclude = chosen;
-    for (const auto& e : chosen) {  // one friction law at a time
-      if (e == "coulomb_friction") exclude.push_back("stribeck_friction");
-      if (e == "stribeck_friction") exclude.push_back("coulomb_friction");
-    }
-    std::vector<Candidate> cands =
-        keep_best_delays(c, generate_candidates(current, cur_res, c.estimation, exclude), h.known_scales);
+  const bool stop_at_noise = opt.noise_floor_factor > 0;
+  if (stop_at_noise && d.nominal_tests.within_noise()) {
+    d.nothing_missing = true;
+    return h;
+  }
+  AcceptanceRules rules;
+  rules.min_gain = opt.min_cost_reduction;
+  rules.min_own_term = opt.min_cost_reduction;
+  rules.min_validation_gain = opt.min_validation_reduction;
+  std::vector<double> bound;
+  for (double s : noise.sigma) bound.push_back(noise_bound_factor(c.exact.samples()) * s);
+  (void)nominal;
+  for (int round = 0; round < opt.max_effects; ++round) {
+    Simulator cur_sim(h.current, c.estimation, {opt.screening_substeps});
+    const SimulationResult cur_res = cur_sim.simulate(values_of(h.current));
+    const std::vector<Candidate> cands = generate_candidates(h.current, cur_res, c.estimation, excluded_by(chosen));
+    c.say("round " + std::to_string(round + 1) + ": screening " + std::to_string(cands.size()) + " hypotheses by least squares");
+    ScreeningOptions so;
+    so.substeps = opt.screening_substeps;
+    so.threads = opt.threads;
+    so.sparsity_tolerance = opt.sparsity_tolerance;
+    so.noise_bound = bound;
+    const Screening screening = screen_hypotheses(h.current, c.estimation, cands, so);
+    d.hypotheses_screened += static_cast<int>(cands.size());
+    const std::vector<const ScreenedHypothesis*> list = shortlist(screening, opt.refine);
+    std::string names;
+    for (const auto* s : list) names += (names.empty() ? "" : ", ") + s->candidate.effect + " (" + s->candidate.equation + ")";
+    c.say("  refining by output error: " + names);
     // The null hypothesis: the current model calibrated with the same budget. A hypothesis must
     // beat it, so that a better optimum of the old parameters is not credited to a new effect.
-    {
-      Candidate null;
-      null.model = current;
-      cands.insert(cands.begin(), null);
-    }
-    c.say("round " + std::to_string(round + 1) + ": calibrating " + std::to_string(cands.size()) + " competing hypotheses");
-    std::vector<Trial> trials = run_trials(c, cands, h.known_scales);
-    // Acceptance: removes enough of the misfit, more than noise could, and (with a validation
-    // record) also helps there.
-    if (trials.front().ok && trials.front().cost < cost_cur) {
+    std::vector<Trial> trials(list.size() + 1);
+    Candidate null;
+    null.model = h.current;
+    parallel(opt.threads, trials.size(), [&](std::size_t i) {
+      trials[i] = i == 0 ? refine(c, null, {values_of(h.current)}, h.known_scales)
+                         : refine(c, list[i - 1]->candidate, list[i - 1]->starts, h.known_scales);
+      if (i > 0) trials[i].screening_gain = list[i - 1]->gain;
+    });
+    d.hypotheses_refined += static_cast<int>(list.size());
+    double cost_cur = 1e300, cost_cur_val = kNaN;
+    if (trials.front().ok) {
       cost_cur = trials.front().cost;
       cost_cur_val = trials.front().cost_val;
-      current = trials.front().model;
+      h.current = trials.front().model;
     }
     // A hypothesis whose calibration merely found a better optimum of the old parameters (its own
     // term switched off fits as well) shows a better baseline, not an effect.
     for (std::size_t i = 1; i < trials.size(); ++i) {
       const auto& t = trials[i];
-      if (t.ok && t.cost_neutral < cost_cur && (!val || t.cost_neutral_val < 1e299)) {
+      if (t.ok && t.cand.parts.empty() && std::isfinite(t.cost_neutral) && t.cost_neutral < cost_cur &&
+          (!c.validation || t.cost_neutral_val < 1e299)) {
         cost_cur = t.cost_neutral;
-        cost_cur_val = val ? t.cost_neutral_val : 0;
-        // Keep the current structure (the switched-off term is dropped), take the better values.
-        for (auto& q : current.parameters)
+        cost_cur_val = t.cost_neutral_val;
+        for (auto& q : h.current.parameters)
           if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
       }
     }
-    std::vector<std::size_t> ok;
+    auto evidence = [&](const Trial& t) {
+      HypothesisEvidence e;
+      e.cost_null = cost_cur;
+      e.cost = t.cost;
+      e.cost_neutral = t.cost_neutral;
+      e.cost_null_validation = cost_cur_val;
+      e.cost_validation = t.cost_val;
+      e.noise_cost = noise.cost;
+      return e;
+    };
+    // Nested hypotheses: a richer law is judged against each special case of it that was
+    // calibrated, by the same rules with that special case as the baseline (its extra parameters
+    // must remove the share of misfit the rules ask, on estimation and validation, and more than
+    // the noise). The switch-off rule does not apply: the special case, calibrated, is the richer
+    // law with its extra terms switched off and every other parameter free.
+    auto against = [&](const Trial& richer, const Trial& special) {
+      HypothesisEvidence e = evidence(richer);
+      e.cost_null = special.cost;
+      e.cost_null_validation = special.cost_val;
+      e.cost_neutral = kNaN;
+      return e;
+    };
     for (std::size_t i = 1; i < trials.size(); ++i) {
-      const auto& t = trials[i];
-      if (!t.ok) continue;
-      const double gain = (cost_cur - t.cost) / cost_cur;
-      if (gain < opt.min_cost_reduction || cost_cur - t.cost < floor_cost) continue;
-      if (t.cost_neutral < 1e299 && (t.cost_neutral - t.cost) / t.cost_neutral < opt.min_cost_reduction) continue;
-      if (val && (cost_cur_val - t.cost_val) / cost_cur_val < 0.5 * opt.min_cost_reduction) continue;
-      ok.push_back(i);
+      if (!trials[i].ok) continue;
+      trials[i].rules = check_rules(evidence(trials[i]), rules);
+      trials[i].accepted = passes(trials[i].rules);
+    }
+    // The special cases of an accepted law that were not calibrated in this round are, as
+    // baselines of the nested rule only.
+    std::vector<Candidate> extra;
+    {
+      std::vector<const Candidate*> calibrated;
+      for (std::size_t j = 1; j < trials.size(); ++j)
+        if (trials[j].ok) calibrated.push_back(&trials[j].cand);
+      for (std::size_t i = 1; i < trials.size(); ++i)
+        if (trials[i].accepted)
+          for (auto& k : missing_special_cases(c, h.current, cur_res, trials[i].cand, calibrated)) {
+            bool dup = false;
+            for (const auto& x : extra) dup = dup || (x.effect == k.effect && x.equation == k.equation);
+            if (!dup) extra.push_back(std::move(k));
+          }
+    }
+    std::vector<Trial> baselines(extra.size());
+    parallel(opt.threads, extra.size(), [&](std::size_t i) { baselines[i] = refine(c, extra[i], {values_of(extra[i].model)}, h.known_scales); });
+    std::vector<const Trial*> special_cases;
+    for (std::size_t j = 1; j < trials.size(); ++j)
+      if (trials[j].ok) special_cases.push_back(&trials[j]);
+    for (const auto& b : baselines)
+      if (b.ok) special_cases.push_back(&b);
+    // ... and the data must exclude the special case: the richer law's bounded-error interval of
+    // a parameter fixed on the way leaves out the fixed value (a richer law whose extra term could
+    // be zero fits better only by fitting what else the model leaves out).
+    std::map<std::size_t, std::map<std::string, std::array<double, 3>>> intervals;  // estimate, lo, hi
+    auto interval_of = [&](std::size_t i, const std::string& name) -> std::array<double, 3> {
+      if (!intervals.count(i)) {
+        auto& box = intervals[i];
+        try {
+          // At the law's optimum, as stage 4 computes them: the calibration continued (a second
+          // budget: a rough cost such as Stribeck's stops short of it), then refined with the
+          // final substeps.
+          const Trial& t = trials[i];
+          Simulator fast(t.model, c.estimation, {opt.screening_substeps}), s(t.model, c.estimation, {opt.final_substeps});
+          const std::vector<int> fr = s.free_parameters();
+          auto ks = h.known_scales;
+          for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) ks.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
+          CalibrationOptions o;
+          o.scale = scales_for(t.model, fr, ks);
+          o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
+          const CalibrationResult further = calibrate(fast, values_of(t.model), fr, o);
+          const CalibrationResult r =
+              refine_with_final_substeps(c, s, further.ok && further.cost < t.cost ? further.parameters : values_of(t.model), fr, o);
+          if (!r.ok) throw NumericalError("the law blows up with the final substeps");
+          const Eigen::MatrixXd J = output_jacobian(s, r.parameters, fr, o.scale, r.outputs);
+          const OutputErrorIntervals oe = output_error_intervals(J, s.measured() - r.outputs, r.parameters, fr, o.scale);
+          for (std::size_t k = 0; oe.built && k < fr.size(); ++k)
+            box[t.model.parameters[static_cast<std::size_t>(fr[k])].name] = {r.parameters[fr[k]], oe.lo[k], oe.hi[k]};
+        } catch (const std::exception&) {
+          // no interval: the special case is not excluded
+        }
+      }
+      const auto& box = intervals[i];
+      const auto it = box.find(name);
+      return it == box.end() ? std::array<double, 3>{kNaN, -inf, inf} : it->second;
+    };
+    auto excludes = [&](std::size_t i, const Fixed& fixed, std::string& why) {
+      if (fixed.empty()) return true;  // reached by equalities only: the rules alone decide
+      for (const auto& [name, value] : fixed) {
+        const auto [estimate, lo, hi] = interval_of(i, name);
+        if (value < lo || value > hi) return true;
+        why += (why.empty() ? "" : ", ") + name + " = " + fmt(estimate) + " in [" + fmt(lo) +
+               ", " + fmt(hi) + "] holds " + fmt(value);
+      }
+      return false;
+    };
+    std::vector<std::size_t> ok;
+    std::map<std::size_t, std::string> beats;  // a richer law kept: the special cases it beat
+    for (std::size_t i = 1; i < trials.size(); ++i) {
+      for (const Trial* j : special_cases) {
+        Fixed fixed;
+        if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
+        if (!passes(check_rules(against(trials[i], *j), rules))) {
+          trials[i].accepted = false;
+          trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
+        } else if (std::string why; !excludes(i, fixed, why)) {
+          trials[i].accepted = false;
+          trials[i].not_beyond = j->cand.effect + " (bounded-error interval: " + why + ")";
+        } else {
+          beats[i] += (beats[i].empty() ? "" : ", ") + j->cand.effect;
+        }
+      }
+      if (trials[i].accepted) ok.push_back(i);
+    }
+    for (std::size_t i = 1; i < trials.size(); ++i) {
+      const Trial& t = trials[i];
+      std::ostringstream line;
+      line << "    " << list[i - 1]->candidate.effect << " (" << list[i - 1]->candidate.equation << "): ";
+      if (!t.ok) line << "could not be calibrated";
+      else {
+        line << "misfit " << fixed1(100 * t.cost / std::max(cost_cur, 1e-300)) << " % of the current model's";
+        if (c.validation) line << ", validation " << fixed1(100 * t.cost_val / std::max(cost_cur_val, 1e-300)) << " %";
+        line << (t.accepted             ? ", passes every rule"
+                 : t.not_beyond.empty() ? ", fails a rule"
+                                        : ", not beyond its special case " + t.not_beyond);
+      }
+      c.say(line.str());
     }
     if (ok.empty()) break;
-    auto judged = [&](std::size_t i) { return val ? trials[i].cost_val : trials[i].cost; };
-    std::size_t best = ok.front();
-    for (std::size_t i : ok)
-      if (judged(i) < judged(best)) best = i;
-    std::size_t pick = best;
-    for (std::size_t i : ok)
-      if (judged(i) <= opt.sparsity_tolerance * judged(best) &&
-          (trials[i].cand.parameters.size() < trials[pick].cand.parameters.size() ||
-           (trials[i].cand.parameters.size() == trials[pick].cand.parameters.size() && judged(i) < judged(pick))))
-        pick = i;
-    if (trials[pick].cand.effect == "time_delay") refine_delay(c, current, h.known_scales, trials[pick]);
+    // The sparsest explanation: misfit (validation when there is one) x tolerance^parameters.
+    auto score = [&](std::size_t i) {
+      const double judged = c.validation ? trials[i].cost_val : trials[i].cost;
+      int p = static_cast<int>(trials[i].cand.parameters.size());
+      for (const auto& part : trials[i].cand.parts.empty() ? std::vector<Candidate>{trials[i].cand} : trials[i].cand.parts)
+        p += part.effect == "time_delay" ? 1 : 0;
+      return judged * std::pow(opt.sparsity_tolerance, p);
+    };
+    std::size_t pick = ok.front(), best = ok.front();
+    for (std::size_t i : ok) {
+      if (score(i) < score(pick)) pick = i;
+      if ((c.validation ? trials[i].cost_val : trials[i].cost) < (c.validation ? trials[best].cost_val : trials[best].cost)) best = i;
+    }
+    // Between nested hypotheses the rules decide, not the parameter count: an accepted richer law
+    // has passed them against the special case picked.
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (std::size_t i : ok)
+        if (nests(trials[i].cand, trials[pick].cand)) {
+          pick = i;
+          moved = true;
+          break;
+        }
+    }
+    if (trials[pick].cand.effect == "time_delay") {
+      // Refine the number of samples; the refined delay must pass the rules too.
+      const Candidate better = best_delay(c, h.current, trials[pick].cand, bound);
+      if (better.delay_samples != trials[pick].cand.delay_samples) {
+        Trial t = refine(c, better, {values_of(better.model)}, h.known_scales);
+        if (t.ok) {
+          t.rules = check_rules(evidence(t), rules);
+          t.screening_gain = trials[pick].screening_gain;
+          if (passes(t.rules) && (c.validation ? t.cost_val <= trials[pick].cost_val : t.cost <= trials[pick].cost)) trials[pick] = t;
+        }
+      }
+    }
     const Trial& t = trials[pick];
-    DiagnosedEffect e;
-    e.name = t.cand.effect;
-    e.equation = t.cand.equation;
-    e.term = t.cand.term;
-    e.cost_reduction_estimation = (cost_cur - t.cost) / cost_cur;
-    e.cost_reduction_validation = val ? (cost_cur_val - t.cost_val) / cost_cur_val : 0;
-    std::ostringstream ev;
-    ev << "adding " << t.cand.term << " to " << t.cand.equation << " removes " << fixed1(100 * e.cost_reduction_estimation)
-       << " % of the squared misfit on the estimation record";
-    if (val) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
-    ev << " (best of " << trials.size() - 1 << " competing hypotheses";
-    if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the simpler explanation";
-    ev << ")";
-    if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
-    e.evidence = ev.str();
-    c.say("  found " + e.name + " in " + e.equation);
-    for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) h.known_scales.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
-    d.effects.push_back(e);
-    chosen.push_back(t.cand.effect);
-    h.chosen.push_back(t.cand);
-    current = t.model;
-    cost_cur = t.cost;
-    cost_cur_val = t.cost_val;
+    // One effect, or two at once (each reported with its own share of the misfit).
+    const std::vector<Candidate> parts = t.cand.parts.empty() ? std::vector<Candidate>{t.cand} : t.cand.parts;
+    std::vector<std::size_t> order(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k) order[k] = k;
+    auto own_share = [&](std::size_t k) {
+      const double off = t.part_neutral.empty() ? t.cost_neutral : t.part_neutral[k];
+      return std::isfinite(off) && off > 0 ? (off - t.cost) / off : 0.0;
+    };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return own_share(a) > own_share(b); });
+    for (std::size_t k : order) {
+      const Candidate& part = parts[k];
+      DiagnosedEffect e;
+      e.name = part.effect;
+      e.equation = part.equation;
+      e.term = part.term;
+      e.delay_samples = part.delay_samples;
+      if (const auto* pe = find_effect(e.name)) e.placement = pe->placement;
+      e.rules = t.rules;
+      for (auto& r : e.rules)
+        if (r.name == "own_term" && !t.part_neutral.empty()) {
+          r.value = own_share(k);
+          r.applies = std::isfinite(t.part_neutral[k]);
+          r.passed = !r.applies || r.value >= r.threshold;
+        }
+      e.screening_gain = t.screening_gain;
+      e.cost_reduction_estimation = t.rules[0].value;
+      e.cost_reduction_validation = t.rules[3].applies ? t.rules[3].value : 0;
+      std::ostringstream ev;
+      ev << "adding " << part.term << " to " << part.equation;
+      if (parts.size() > 1) ev << " (together with " << parts[1 - k].effect << " in " << parts[1 - k].equation << ")";
+      ev << " removes " << fixed1(100 * e.cost_reduction_estimation) << " % of the squared misfit on the estimation record";
+      if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
+      ev << " (screened " << screening.ranked.size() << " hypotheses, refined " << list.size() << ", " << ok.size() << " passed every rule";
+      if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the sparser explanation";
+      if (beats.count(pick)) ev << "; preferred to " << beats[pick] << ", its special case, by the same rules";
+      ev << ")";
+      if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
+      e.evidence = ev.str();
+      c.say("  found " + e.name + " in " + e.equation);
+      for (std::size_t q = 0; q < part.parameters.size(); ++q) h.known_scales.emplace_back(part.parameters[q], part.scales[q]);
+      d.effects.push_back(e);
+      chosen.push_back(part.effect);
+      h.chosen.push_back(part);
+    }
+    h.current = t.model;
+    // Within the noise now? Then nothing more is missing.
+    if (stop_at_noise && round + 1 < opt.max_effects) {
+      Simulator s(h.current, c.estimation, {opt.screening_substeps});
+      const SimulationResult r = s.simulate(values_of(h.current));
+      if (test_residual(s, values_of(h.current), r, noise.sigma).within_noise()) break;
+    }
   }
   return h;
 }

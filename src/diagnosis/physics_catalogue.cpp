@@ -2,8 +2,10 @@
 
 #include <boost/algorithm/string/classification.hpp>
 #include <boost/algorithm/string/trim.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <regex>
 #include <set>
 
@@ -11,35 +13,52 @@ namespace sets {
 
 const std::vector<PhysicsEffect>& physics_catalogue() {
   static const std::vector<PhysicsEffect> c = {
-      {"coulomb_friction", "force balance of a velocity state v (q' = v)", "- Fc*sign(v)",
-       "residual force is a square wave in the sign of v: a jump at every reversal, constant in between"},
-      {"stribeck_friction", "force balance of a velocity state v", "- sign(v)*(Fc + Fs*exp(-(v/vs)^2))",
-       "like Coulomb friction plus an excess that decays with |v| (breakaway near zero velocity)"},
-      {"viscous_friction", "force balance of a velocity state v", "- Fv*v",
-       "residual force proportional to v (a straight line through 0 against v)"},
-      {"quadratic_drag", "force balance of a velocity state v", "- Cd*v*abs(v)",
-       "residual force grows with v^2 and keeps the sign of v; small at low speed"},
-      {"constant_offset", "any state equation (a force bias in a force balance)", "- offset",
-       "residual of constant sign and size, independent of the operating point"},
-      {"cubic_stiffness", "force balance (position q) or any state equation (state x)", "- k3*q^3",
-       "residual grows with the cube of the displacement: concentrated at large |q|"},
-      {"backlash", "an actuator signal a (input or sampled signal driving a state equation)",
+      {"coulomb_friction", "additive", "force balance of a velocity state v that changes sign", "- Fc*sign(v)",
+       "residual force is a square wave in the sign of v: a jump at every reversal, constant in between", {}},
+      {"stribeck_friction", "additive", "force balance of a velocity state v that changes sign",
+       "- sign(v)*(Fc + Fs*exp(-(v/vs)^2))",
+       "like Coulomb friction plus an excess that decays with |v| (breakaway near zero velocity)",
+       {{{"coulomb_friction"}, {{"Fs", 0.0}}}}},
+      {"viscous_friction", "additive", "force balance of a velocity state v that changes sign", "- Fv*v",
+       "residual force proportional to v (a straight line through 0 against v)", {}},
+      {"quadratic_drag", "additive", "force balance of a velocity state v that changes sign", "- Cd*v*abs(v)",
+       "residual force grows with v^2 and keeps the sign of v; small at low speed", {}},
+      {"asymmetric_friction", "additive", "force balance of a velocity state v that changes sign",
+       "- (Fc_pos*(v > 0) - Fc_neg*(v < 0) + dFv*v*(v > 0))",
+       "friction differs with the direction of motion: the residual force against v has a different step and "
+       "slope on the two sides of zero",
+       // Fc_pos = Fc_neg, dFv = 0; or dFv = 0 alone: Coulomb friction and an offset (equal but at v = 0).
+       {{{"coulomb_friction"}, {{"dFv", 0.0}}}, {{"coulomb_friction", "constant_offset"}, {{"dFv", 0.0}}}}},
+      {"constant_offset", "additive", "any state equation that is not a kinematic identity q' = v", "- offset",
+       "residual of constant sign and size, independent of the operating point", {}},
+      {"cubic_stiffness", "additive", "force balance (cubic in the pair's position q) or the equation of a state x "
+       "that changes sign", "- k3*q^3", "residual grows with the cube of the displacement: concentrated at large |q|",
+       {}},
+      {"bouc_wen_hysteresis", "own state", "force balance of a mechanical pair (q, v): a restoring force z with its "
+       "own state", "- z, z' = alpha*v - beta*(gamma*abs(v)*abs(z)^(n-1)*z + delta*v*abs(z)^n)",
+       "residual force against q is a loop: it depends on the direction of motion and saturates between reversals", {}},
+      {"backlash", "actuator", "an actuator signal a (input or sampled signal driving a state equation)",
        "a -> max(a - b, min(a + b, prev(a_bl, 1)))",
-       "the effective drive lags by a play band 2b after every reversal of a; error at reversals of the drive"},
-      {"dead_zone", "an actuator signal a", "a -> a - min(max(a, -d), d)",
-       "small drives have no effect: residual concentrated where |a| is small"},
-      {"input_saturation", "an actuator signal a", "a -> min(max(a, -umax), umax)",
-       "residual only where |a| is large (the model drives harder than the plant can)"},
-      {"output_saturation", "an output y (the sensor)", "y -> min(max(y, ylo), yhi)",
-       "measured output flat at a level while the model goes beyond it: residual near a limit"},
-      {"sqrt_outflow", "the equation of a level-like state x (a tank)", "- a*sqrt(max(x, 0))",
-       "residual depends on the level: a linear outflow is too weak at low level, too strong at high"},
-      {"time_delay", "an actuator signal a", "a -> prev(a, n)",
-       "residual looks like the derivative of the response: largest just after changes of the drive"},
-      {"hysteresis", "an output y (sensor with a play band)", "y -> max(y - w, min(y + w, prev(y_h, 1)))",
-       "measured output lags by w with the sign of its rate; offset flips at reversals of the output"},
-      {"absolute_value_sensor", "an output y", "y -> abs(y)",
-       "measured output never negative; residual where the model output is negative (mirror image)"},
+       "the effective drive lags by a play band 2b after every reversal of a; error at reversals of the drive", {}},
+      {"dead_zone", "actuator", "an actuator signal a", "a -> a - min(max(a, -d), d)",
+       "small drives have no effect: residual concentrated where |a| is small", {}},
+      {"input_saturation", "actuator", "an actuator signal a", "a -> min(max(a, -umax), umax)",
+       "residual only where |a| is large (the model drives harder than the plant can)", {}},
+      {"output_saturation", "sensor", "an output y (the sensor)", "y -> min(max(y, y_lo), y_hi)",
+       "measured output flat at a level while the model goes beyond it: residual near a limit", {}},
+      {"sqrt_outflow", "replaces a*x", "a linear outflow a*x of a level-like state x (x >= 0) replaced by its "
+       "square-root law", "a*x -> a_sqrt*sqrt(max(x, 0))",
+       "residual depends on the level: a linear outflow is too weak at low level, too strong at high", {}},
+      {"state_saturation", "state limit", "the equation of a state that is not a kinematic identity: the state "
+       "cannot pass a limit (overflow, end stop)", "x' = f -> f - max(f, 0)*(x >= x_max)  (or min(f, 0)*(x <= x_min))",
+       "the measured state stays flat at a level while the model goes beyond it, and leaves it as soon as the "
+       "drive turns (unlike a sensor limit, the dynamics after the flat part start from the limit)", {}},
+      {"time_delay", "actuator", "an actuator signal a", "a -> prev(a, n)",
+       "residual looks like the derivative of the response: largest just after changes of the drive", {}},
+      {"hysteresis", "sensor", "an output y (sensor with a play band)", "y -> max(y - w, min(y + w, prev(y_h, 1)))",
+       "measured output lags by w with the sign of its rate; offset flips at reversals of the output", {}},
+      {"absolute_value_sensor", "sensor", "an output y", "y -> abs(y)",
+       "measured output never negative; residual where the model output is negative (mirror image)", {}},
   };
   return c;
 }
@@ -47,6 +66,18 @@ const std::vector<PhysicsEffect>& physics_catalogue() {
 const PhysicsEffect* find_effect(const std::string& name) {
   for (const auto& e : physics_catalogue())
     if (e.name == name) return &e;
+  return nullptr;
+}
+
+const SpecialCase* find_special_case(std::vector<std::string> effects, const std::string& general) {
+  const PhysicsEffect* g = find_effect(general);
+  if (!g) return nullptr;
+  std::sort(effects.begin(), effects.end());
+  for (const auto& sc : g->special_cases) {
+    std::vector<std::string> e = sc.effects;
+    std::sort(e.begin(), e.end());
+    if (e == effects) return &sc;
+  }
   return nullptr;
 }
 
@@ -64,6 +95,9 @@ std::string fresh_name(const ModelFile& model, const std::string& wanted) {
 }
 
 namespace {
+
+constexpr double kHuge = 1e300;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string trim(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t\n")); }
 
@@ -83,8 +117,7 @@ std::string subtract_force(const std::string& text, const std::string& term) {
       }
     }
     static const std::regex tail(R"(^\s*/\s*[A-Za-z_][A-Za-z0-9_]*\s*$)");
-    if (close != std::string::npos && std::regex_match(s.substr(close + 1), tail))
-    {
+    if (close != std::string::npos && std::regex_match(s.substr(close + 1), tail)) {
       std::string r(1, '(');
       r.append(s, 1, close - 1).append(" - ").append(term).append(s, close);
       return r;
@@ -93,7 +126,16 @@ std::string subtract_force(const std::string& text, const std::string& term) {
   return s + " - (" + term + ")";
 }
 
-bool is_force_form(const std::string& text) { return subtract_force(text, "X").find(" - (X)") == std::string::npos; }
+// The inertia M of a force balance "(...)/M" (its value), or 1.
+double inertia_of(const ModelFile& model, const std::string& text) {
+  if (subtract_force(text, "X").find(" - (X)") != std::string::npos) return 1.0;
+  static const std::regex tail(R"(/\s*([A-Za-z_][A-Za-z0-9_]*)\s*$)");
+  std::smatch m;
+  const std::string s = trim(text);
+  if (std::regex_search(s, m, tail))
+    if (const auto* p = model.parameter(m[1].str())) return std::abs(p->value) > 0 ? std::abs(p->value) : 1.0;
+  return 1.0;
+}
 
 double rms(const Eigen::VectorXd& x) { return x.size() ? std::sqrt(x.squaredNorm() / static_cast<double>(x.size())) : 0.0; }
 double positive(double x, double fallback) { return std::isfinite(x) && x > 0 ? x : fallback; }
@@ -102,6 +144,275 @@ Eigen::VectorXd rate(const Eigen::VectorXd& x, double Ts) {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(x.size());
   for (Eigen::Index i = 1; i < x.size(); ++i) d[i] = (x[i] - x[i - 1]) / Ts;
   return d;
+}
+
+bool changes_sign(const Eigen::VectorXd& x) {
+  const double m = x.cwiseAbs().maxCoeff();
+  return m > 0 && x.minCoeff() < -0.05 * m && x.maxCoeff() > 0.05 * m;
+}
+
+// The product p*x or x*p as a regex (whole words, spaces allowed).
+std::regex product_regex(const std::string& p, const std::string& x) {
+  return std::regex("(^|[^A-Za-z0-9_])(" + p + "\\s*\\*\\s*" + x + "|" + x + "\\s*\\*\\s*" + p + ")(?![A-Za-z0-9_])");
+}
+
+// A candidate under construction: new parameters with their role, scale, bounds and neutral value.
+struct Builder {
+  Candidate c;
+  Builder(const ModelFile& model, const std::string& effect, const std::string& equation) {
+    c.effect = effect;
+    c.equation = equation;
+    c.model = model;
+  }
+  std::string add(const std::string& role, double start, double scale, bool linear, double neutral, double lo = -kHuge,
+                  double hi = kHuge, bool fixed = false) {
+    ModelParameter p;
+    p.name = fresh_name(c.model, role);
+    p.value = start;
+    p.min = lo;
+    p.max = hi;
+    p.fixed = fixed;
+    c.model.parameters.push_back(p);
+    if (fixed) {
+      c.fixed_roles.push_back(role);
+      return p.name;
+    }
+    c.parameters.push_back(p.name);
+    c.roles.push_back(role);
+    c.scales.push_back(scale);
+    c.linear.push_back(linear);
+    c.neutral.push_back(neutral);
+    return p.name;
+  }
+};
+
+struct Context {
+  const ModelFile& model;
+  const SimulationResult& sim;
+  const Recording& measured;
+  const ModelStructure& st;
+  double Ts;
+  std::vector<std::string> exclude;
+  std::vector<Candidate>& out;
+  bool excluded(const std::string& e) const { return std::find(exclude.begin(), exclude.end(), e) != exclude.end(); }
+  // The signal of a symbol: its measured column when it is compared with one, else simulated.
+  Eigen::VectorXd data_of(const std::string& sym) const {
+    for (const auto& [s, col] : model.outputs)
+      if (s == sym && measured.has(col)) {
+        const auto& v = measured.column(col);
+        return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+      }
+    return sim.series(sym);
+  }
+};
+
+// Additive terms in the force balance (or rate equation) of a velocity-like state v.
+void friction_candidates(const Context& k, const std::string& v) {
+  const std::string text = *k.model.derivative(v);
+  const Eigen::VectorXd vv = k.sim.series(v);
+  if (!changes_sign(vv)) return;  // one direction only: a friction law is an offset there
+  const double vr = positive(rms(vv), 1.0), F = positive(inertia_of(k.model, text) * rms(rate(vv, k.Ts)), inertia_of(k.model, text) * vr);
+  auto emit = [&](Builder& b, const std::string& term) {
+    b.c.term = term;
+    *b.c.model.derivative(v) = subtract_force(text, term);
+    k.out.push_back(std::move(b.c));
+  };
+  // Friction and drag dissipate: their coefficients are >= 0 (a negative one is not that effect).
+  if (!k.excluded("coulomb_friction")) {
+    Builder b(k.model, "coulomb_friction", v);
+    emit(b, b.add("Fc", 0, F, true, 0, 0) + "*sign(" + v + ")");
+  }
+  if (!k.excluded("stribeck_friction")) {
+    Builder b(k.model, "stribeck_friction", v);
+    const std::string fc = b.add("Fc", 0, F, true, 0, 0), fs = b.add("Fs", 0, F, true, 0, 0);
+    const std::string vs = b.add("vs", 0.3 * vr, vr, false, kNaN, 1e-6 * vr);
+    for (double f : {0.05, 0.1, 0.2, 0.4, 0.8}) b.c.grid.push_back({f * vr});
+    emit(b, "sign(" + v + ")*(" + fc + " + " + fs + "*exp(-(" + v + "/" + vs + ")^2))");
+  }
+  if (!k.excluded("viscous_friction")) {
+    Builder b(k.model, "viscous_friction", v);
+    emit(b, b.add("Fv", 0, F / vr, true, 0, 0) + "*" + v);
+  }
+  if (!k.excluded("quadratic_drag")) {
+    Builder b(k.model, "quadratic_drag", v);
+    emit(b, b.add("Cd", 0, F / (vr * vr), true, 0, 0) + "*" + v + "*abs(" + v + ")");
+  }
+  if (!k.excluded("asymmetric_friction")) {
+    Builder b(k.model, "asymmetric_friction", v);
+    const std::string p = b.add("Fc_pos", 0, F, true, 0, 0), n = b.add("Fc_neg", 0, F, true, 0, 0);
+    const std::string d = b.add("dFv", 0, F / vr, true, 0);
+    emit(b, "(" + p + "*(" + v + " > 0) - " + n + "*(" + v + " < 0) + " + d + "*" + v + "*(" + v + " > 0))");
+  }
+}
+
+void additive_candidates(const Context& k, const std::string& x, const std::string& cubic_in) {
+  const std::string text = *k.model.derivative(x);
+  const double M = inertia_of(k.model, text);
+  const Eigen::VectorXd xx = k.sim.series(x);
+  const double F = positive(M * rms(rate(xx, k.Ts)), M * positive(rms(xx), 1.0));
+  auto emit = [&](Builder& b, const std::string& term) {
+    b.c.term = term;
+    *b.c.model.derivative(x) = subtract_force(text, term);
+    k.out.push_back(std::move(b.c));
+  };
+  if (!k.excluded("constant_offset")) {
+    Builder b(k.model, "constant_offset", x);
+    emit(b, b.add("offset", 0, F, true, 0));
+  }
+  if (!cubic_in.empty() && !k.excluded("cubic_stiffness")) {
+    const double qr = positive(rms(k.sim.series(cubic_in)), 1.0);
+    Builder b(k.model, "cubic_stiffness", x);
+    emit(b, b.add("k3", 0, F / (qr * qr * qr), true, 0) + "*" + cubic_in + "^3");
+  }
+}
+
+// z' = alpha v - beta (gamma |v| |z|^(n-1) z + delta v |z|^n), force -z. beta = 1 / range(q) and
+// n = 1 are fixed normalisations: then z = alpha * zeta with zeta independent of alpha, so alpha
+// is linear; gamma and delta set the yield displacement 1 / (beta (gamma + delta)) and the shape.
+void bouc_wen_candidate(const Context& k, const std::string& q, const std::string& v) {
+  if (k.excluded("bouc_wen_hysteresis")) return;
+  const std::string text = *k.model.derivative(v);
+  const Eigen::VectorXd qq = k.sim.series(q), vv = k.sim.series(v);
+  const double range = positive(qq.maxCoeff() - qq.minCoeff(), 1.0);
+  const double F = positive(inertia_of(k.model, text) * rms(rate(vv, k.Ts)), 1.0);
+  Builder b(k.model, "bouc_wen_hysteresis", v);
+  const std::string z = fresh_name(b.c.model, "z_bw");
+  ModelState zs;
+  zs.name = z;
+  zs.initial_value = 0.0;
+  b.c.model.states.push_back(zs);
+  const std::string alpha = b.add("alpha", 0, F / (0.1 * range), true, 0, 0);
+  const std::string gamma = b.add("gamma", 5, 5, false, kNaN), delta = b.add("delta", 5, 5, false, kNaN);
+  const std::string beta = b.add("beta", 1 / range, 1 / range, false, kNaN, -kHuge, kHuge, true);
+  const std::string n = b.add("n", 1, 1, false, kNaN, -kHuge, kHuge, true);
+  for (double yield : {0.03, 0.1, 0.3})
+    for (double share : {0.25, 0.5, 0.75}) b.c.grid.push_back({share / yield, (1 - share) / yield});
+  b.c.model.derivatives.emplace_back(z, alpha + "*" + v + " - " + beta + "*(" + gamma + "*abs(" + v + ")*abs(" + z + ")^(" +
+                                            n + " - 1)*" + z + " + " + delta + "*" + v + "*abs(" + z + ")^" + n + ")");
+  b.c.term = z + " with " + b.c.model.derivatives.back().first + "' = " + b.c.model.derivatives.back().second;
+  *b.c.model.derivative(v) = subtract_force(text, z);
+  k.out.push_back(std::move(b.c));
+}
+
+// sqrt_outflow: the linear outflow p*x of a level replaced, wherever the product appears, by
+// a_sqrt*sqrt(max(x, 0)), starting from the same flow at the mean level.
+void sqrt_candidates(const Context& k, const std::string& x) {
+  if (k.excluded("sqrt_outflow")) return;
+  const Eigen::VectorXd xx = k.sim.series(x);
+  if (xx.minCoeff() < -0.05 * xx.cwiseAbs().maxCoeff()) return;  // not a level
+  const double xm = positive(xx.mean(), positive(rms(xx), 1.0));
+  bool replaced = false;
+  for (const auto& lt : k.st.linear_terms) {
+    if (lt.state != x || std::find(lt.equations.begin(), lt.equations.end(), x) == lt.equations.end()) continue;
+    const double a = k.model.parameter(lt.parameter)->value;
+    Builder b(k.model, "sqrt_outflow", x);
+    const std::string as = b.add("a_sqrt", a * std::sqrt(xm), positive(std::abs(a) * std::sqrt(xm), 1.0), false, kNaN, 0);
+    const std::string by = as + "*sqrt(max(" + x + ", 0))";
+    const std::regex re = product_regex(lt.parameter, x);
+    for (auto& d : b.c.model.derivatives) d.second = std::regex_replace(d.second, re, "$1" + by);
+    for (auto& s : b.c.model.signals) s.second = std::regex_replace(s.second, re, "$1" + by);
+    bool still_used = false;
+    for (const auto& d : b.c.model.derivatives) still_used = still_used || uses(d.second, lt.parameter);
+    for (const auto& s : b.c.model.signals) still_used = still_used || uses(s.second, lt.parameter);
+    for (const auto& s : b.c.model.sampled) still_used = still_used || uses(s.second, lt.parameter);
+    if (!still_used) b.c.model.parameter(lt.parameter)->fixed = true;  // replaced: no longer in the model
+    b.c.term = lt.parameter + "*" + x + " -> " + by;
+    b.c.grid.push_back({a * std::sqrt(xm)});
+    k.out.push_back(std::move(b.c));
+    replaced = true;
+  }
+  (void)replaced;  // no product a*x to replace: no square-root law here (a balance such as
+                   // (T - Ta)/R is not an outflow of a level)
+}
+
+// The state cannot pass a limit: the derivative f is cut where it would push beyond it.
+void limit_candidates(const Context& k, const std::string& x) {
+  if (k.excluded("state_saturation")) return;
+  const Eigen::VectorXd xx = k.data_of(x);
+  const double hi = xx.maxCoeff(), lo = xx.minCoeff(), range = positive(hi - lo, 1.0);
+  const std::string f = "(" + *k.model.derivative(x) + ")";
+  for (int upper = 1; upper >= 0; --upper) {
+    Builder b(k.model, "state_saturation", x);
+    const std::string p = b.add(upper ? "x_max" : "x_min", upper ? hi : lo, range, false, upper ? kHuge : -kHuge);
+    for (double frac : {0.0, 0.02, 0.05, 0.1, 0.2}) b.c.grid.push_back({upper ? hi - frac * range : lo + frac * range});
+    b.c.term = upper ? f + " - max(" + f + ", 0)*(" + x + " >= " + p + ")" : f + " - min(" + f + ", 0)*(" + x + " <= " + p + ")";
+    *b.c.model.derivative(x) = b.c.term;
+    b.c.term = x + "' cut at " + p;
+    k.out.push_back(std::move(b.c));
+  }
+}
+
+void actuator_candidates(const Context& k, const std::string& a) {
+  const Eigen::VectorXd aa = k.sim.series(a);
+  const double amax = positive(aa.cwiseAbs().maxCoeff(), 1.0), arange = positive(aa.maxCoeff() - aa.minCoeff(), amax);
+  auto rewire = [&](Candidate& c, const std::string& by) {
+    for (auto& d : c.model.derivatives) d.second = replace_symbol(d.second, a, by);
+    for (auto& d : c.model.signals) d.second = replace_symbol(d.second, a, by);
+  };
+  auto emit = [&](Builder& b, const std::string& suffix, const std::string& term) {
+    const std::string s = fresh_name(b.c.model, a + suffix);
+    b.c.term = term;
+    b.c.model.sampled.emplace_back(s, replace_symbol(term, "@self", s));
+    b.c.term = replace_symbol(term, "@self", s);
+    rewire(b.c, s);
+    k.out.push_back(std::move(b.c));
+  };
+  if (!k.excluded("input_saturation")) {
+    Builder b(k.model, "input_saturation", a);
+    const std::string p = b.add("umax", 0.9 * amax, amax, false, kHuge, 0);
+    for (double f : {0.3, 0.45, 0.6, 0.75, 0.9}) b.c.grid.push_back({f * amax});
+    emit(b, "_sat", "min(max(" + a + ", -" + p + "), " + p + ")");
+  }
+  if (!k.excluded("dead_zone")) {
+    Builder b(k.model, "dead_zone", a);
+    const std::string p = b.add("d", 0.02 * amax, 0.1 * amax, false, 0, 0);
+    for (double f : {0.02, 0.05, 0.1, 0.2, 0.35}) b.c.grid.push_back({f * amax});
+    emit(b, "_eff", a + " - min(max(" + a + ", -" + p + "), " + p + ")");
+  }
+  if (!k.excluded("backlash")) {
+    Builder b(k.model, "backlash", a);
+    const std::string p = b.add("b", 0.02 * arange, 0.1 * arange, false, 0, 0);
+    for (double f : {0.01, 0.02, 0.05, 0.1, 0.2}) b.c.grid.push_back({f * arange});
+    emit(b, "_bl", "max(" + a + " - " + p + ", min(" + a + " + " + p + ", prev(@self, 1)))");
+  }
+  if (!k.excluded("time_delay"))
+    for (int n : {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64}) {
+      if (n >= k.sim.values.rows() / 10) break;
+      k.out.push_back(delay_candidate(k.model, a, n));
+    }
+}
+
+void sensor_candidates(const Context& k, std::size_t j) {
+  const std::string y = k.model.outputs[j].first, col = k.model.outputs[j].second;  // captured below (Clang 14)
+  const auto& mv = k.measured.column(col);
+  const double lo = *std::min_element(mv.begin(), mv.end()), hi = *std::max_element(mv.begin(), mv.end());
+  const double range = positive(hi - lo, 1.0);
+  const Eigen::VectorXd yy = k.sim.series(y);
+  auto sensor = [&](Builder& b, const std::string& suffix, const std::string& term) {
+    const std::string s = fresh_name(b.c.model, y + suffix);
+    b.c.term = replace_symbol(term, "@self", s);
+    b.c.model.sampled.emplace_back(s, b.c.term);
+    b.c.model.outputs[j].first = s;
+    k.out.push_back(std::move(b.c));
+  };
+  if (!k.excluded("output_saturation")) {
+    Builder b(k.model, "output_saturation", y);
+    const std::string a = b.add("y_lo", lo, range, false, -kHuge), c = b.add("y_hi", hi, range, false, kHuge);
+    b.c.grid.push_back({lo, hi});
+    sensor(b, "_sensor", "min(max(" + y + ", " + a + "), " + c + ")");
+  }
+  if (!k.excluded("hysteresis")) {
+    Builder b(k.model, "hysteresis", y);
+    const std::string w = b.add("w", 0.01 * range, 0.05 * range, false, 0, 0);
+    for (double f : {0.002, 0.005, 0.01, 0.02, 0.05}) b.c.grid.push_back({f * range});
+    sensor(b, "_h", "max(" + y + " - " + w + ", min(" + y + " + " + w + ", prev(@self, 1)))");
+  }
+  // A mirror only makes sense if the data stay non-negative while the model goes negative.
+  if (!k.excluded("absolute_value_sensor") && lo > -0.02 * range && yy.minCoeff() < 0) {
+    Builder b(k.model, "absolute_value_sensor", y);
+    b.c.restart = true;
+    sensor(b, "_abs", "abs(" + y + ")");
+  }
 }
 
 }  // namespace
@@ -118,21 +429,59 @@ Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
   return c;
 }
 
+Candidate combine_candidates(const Candidate& first, const Candidate& second) {
+  Candidate c = second;
+  c.effect = first.effect + "+" + second.effect;
+  c.equation = first.equation + "," + second.equation;
+  c.term = first.term + "; " + second.term;
+  auto prepend = [](auto& to, const auto& from) { to.insert(to.begin(), from.begin(), from.end()); };
+  prepend(c.parameters, first.parameters);
+  prepend(c.roles, first.roles);
+  prepend(c.scales, first.scales);
+  prepend(c.neutral, first.neutral);
+  prepend(c.linear, first.linear);
+  prepend(c.fixed_roles, first.fixed_roles);
+  c.grid.clear();
+  c.delay_samples = std::max(first.delay_samples, second.delay_samples);
+  c.restart = first.restart || second.restart;
+  Candidate a = first, b = second;
+  a.model = ModelFile();
+  b.model = ModelFile();
+  c.parts = {a, b};
+  return c;
+}
+
 ModelStructure analyse_structure(const ModelFile& model) {
   ModelStructure s;
-  std::set<std::string> positions;
+  std::set<std::string> positions, pair_velocities;
   for (const auto& st : model.states) {
     const std::string d = trim(*model.derivative(st.name));
     for (const auto& other : model.states)
       if (other.name == d && other.name != st.name) {
         s.mechanical.emplace_back(st.name, other.name);
         positions.insert(st.name);
+        pair_velocities.insert(other.name);
       }
   }
+  for (const auto& st : model.states)
+    if (!positions.count(st.name) && !pair_velocities.count(st.name)) s.other_states.push_back(st.name);
+  // Linear terms p*x of a free parameter and a state.
+  for (const auto& p : model.parameters) {
+    if (p.fixed) continue;
+    for (const auto& st : model.states) {
+      LinearTerm lt{p.name, st.name, {}};
+      const std::regex re = product_regex(p.name, st.name);
+      for (const auto& [x, text] : model.derivatives)
+        if (std::regex_search(text, re)) lt.equations.push_back(x);
+      if (!lt.equations.empty()) s.linear_terms.push_back(lt);
+    }
+  }
   for (const auto& st : model.states) {
-    bool velocity = false;
-    for (const auto& m : s.mechanical) velocity = velocity || m.second == st.name;
-    if (!positions.count(st.name) && !velocity) s.other_states.push_back(st.name);
+    bool damped = pair_velocities.count(st.name) > 0;
+    for (const auto& lt : s.linear_terms)
+      damped = damped || (!positions.count(st.name) && lt.state == st.name &&
+                          std::find(lt.equations.begin(), lt.equations.end(), st.name) != lt.equations.end());
+    if (damped) s.velocities.push_back(st.name);
   }
   std::vector<std::string> plant_texts;
   for (const auto& d : model.derivatives) plant_texts.push_back(d.second);
@@ -152,9 +501,7 @@ ModelStructure analyse_structure(const ModelFile& model) {
 std::vector<Candidate> generate_candidates(const ModelFile& model, const SimulationResult& nominal,
                                            const Recording& measured, const std::vector<std::string>& exclude) {
   std::vector<Candidate> out;
-  const auto excluded = [&](const std::string& e) { return std::find(exclude.begin(), exclude.end(), e) != exclude.end(); };
   const ModelStructure st = analyse_structure(model);
-  const auto N = nominal.values.rows();
   double Ts = 1;
   if (!model.time_column.empty() && measured.has(model.time_column)) {
     const auto& t = measured.column(model.time_column);
@@ -162,166 +509,27 @@ std::vector<Candidate> generate_candidates(const ModelFile& model, const Simulat
   } else if (model.sample_time) {
     Ts = *model.sample_time;
   }
-  auto add_param = [](Candidate& c, const std::string& name, double value, double scale, double lo = -1e300,
-                      double hi = 1e300, double neutral = 0.0) {
-    c.neutral.push_back(neutral);
-    ModelParameter p;
-    p.name = name;
-    p.value = value;
-    p.min = lo;
-    p.max = hi;
-    c.model.parameters.push_back(p);
-    c.parameters.push_back(name);
-    c.scales.push_back(scale);
-  };
-  // --- force balances of mechanical pairs
-  for (const auto& pair : st.mechanical) {
-    const std::string& q = pair.first;  // named, not bound: lambdas below capture them (Clang 14)
-    const std::string& v = pair.second;
-    const std::string text = *model.derivative(v);
-    const Eigen::VectorXd vv = nominal.series(v), qq = nominal.series(q);
-    const double vrms = positive(rms(vv), 1.0), qrms = positive(rms(qq), 1.0);
-    double mass = 1;
-    if (is_force_form(text)) {
-      static const std::regex tail(R"(/\s*([A-Za-z_][A-Za-z0-9_]*)\s*$)");
-      std::smatch m;
-      const std::string s = trim(text);
-      if (std::regex_search(s, m, tail))
-        if (const auto* p = model.parameter(m[1].str())) mass = std::abs(p->value) > 0 ? std::abs(p->value) : 1.0;
-    }
-    const double force = positive(mass * rms(rate(vv, Ts)), mass * vrms) ;
-    auto make = [&](const std::string& effect, const std::vector<std::tuple<std::string, double, double, double>>& params,
-                    auto term_of) {
-      if (excluded(effect)) return;
-      Candidate c;
-      c.effect = effect;
-      c.equation = v;
-      c.model = model;
-      std::vector<std::string> names;
-      for (const auto& [n, val, sc, lo] : params) {
-        names.push_back(fresh_name(c.model, n));
-        add_param(c, names.back(), val, sc, lo);
-      }
-      c.term = term_of(names);
-      if (effect == "stribeck_friction") c.neutral[2] = std::nan("");  // vs: irrelevant once Fc = Fs = 0
-      *c.model.derivative(v) = subtract_force(text, c.term);
-      out.push_back(std::move(c));
-    };
-    // Friction and drag dissipate: their coefficients are >= 0 (a negative one is not that effect).
-    make("coulomb_friction", {{"Fc", 0.0, force, 0.0}}, [&](auto& n) { return n[0] + "*sign(" + v + ")"; });
-    make("stribeck_friction", {{"Fc", 0.0, force, 0.0}, {"Fs", 0.0, force, 0.0}, {"vs", 0.3 * vrms, vrms, 1e-9 * vrms}},
-         [&](auto& n) { return "sign(" + v + ")*(" + n[0] + " + " + n[1] + "*exp(-(" + v + "/" + n[2] + ")^2))"; });
-    make("viscous_friction", {{"Fv", 0.0, force / vrms, 0.0}}, [&](auto& n) { return n[0] + "*" + v; });
-    make("quadratic_drag", {{"Cd", 0.0, force / (vrms * vrms), 0.0}},
-         [&](auto& n) { return n[0] + "*" + v + "*abs(" + v + ")"; });
-    make("constant_offset", {{"offset", 0.0, force, -1e300}}, [&](auto& n) { return n[0]; });
-    make("cubic_stiffness", {{"k3", 0.0, force / (qrms * qrms * qrms), -1e300}},
-         [&](auto& n) { return n[0] + "*" + q + "^3"; });
+  const Context k{model, nominal, measured, st, Ts, exclude, out};
+  std::set<std::string> positions;
+  for (const auto& [q, v] : st.mechanical) positions.insert(q);
+  std::vector<std::string> velocities = st.velocities;
+  for (const auto& x : st.other_states)  // a momentum balance (...)/M of a state that changes sign
+    if (std::find(velocities.begin(), velocities.end(), x) == velocities.end() &&
+        subtract_force(*model.derivative(x), "X").find(" - (X)") == std::string::npos && changes_sign(nominal.series(x)))
+      velocities.push_back(x);
+  for (const auto& v : velocities) friction_candidates(k, v);
+  for (const auto& [q, v] : st.mechanical) {
+    additive_candidates(k, v, q);
+    bouc_wen_candidate(k, q, v);
   }
-  // --- other state equations (tanks, thermal, first-order lags)
   for (const auto& x : st.other_states) {
-    const std::string text = *model.derivative(x);
-    const Eigen::VectorXd xx = nominal.series(x);
-    const double xrms = positive(rms(xx), 1.0);
-    const double drms = positive(rms(rate(xx, Ts)), xrms);
-    auto make = [&](const std::string& effect, const std::string& pname, double scale, auto term_of) {
-      if (excluded(effect)) return;
-      Candidate c;
-      c.effect = effect;
-      c.equation = x;
-      c.model = model;
-      const std::string n = fresh_name(c.model, pname);
-      add_param(c, n, 0.0, scale);
-      c.term = term_of(n);
-      *c.model.derivative(x) = trim(text) + " - " + c.term;
-      out.push_back(std::move(c));
-    };
-    make("constant_offset", "offset_" + x, drms, [&](const std::string& n) { return n; });
-    make("cubic_stiffness", "k3_" + x, drms / (xrms * xrms * xrms),
-         [&](const std::string& n) { return n + "*" + x + "^3"; });
-    if (xx.minCoeff() > -0.05 * xx.cwiseAbs().maxCoeff())
-      make("sqrt_outflow", "a_" + x, drms / std::sqrt(xrms),
-           [&](const std::string& n) { return n + "*sqrt(max(" + x + ", 0))"; });
+    const bool velocity = std::find(velocities.begin(), velocities.end(), x) != velocities.end();
+    additive_candidates(k, x, !velocity && changes_sign(nominal.series(x)) ? x : "");
+    sqrt_candidates(k, x);
+    limit_candidates(k, x);
   }
-  // --- actuators
-  for (const auto& a : st.actuators) {
-    const Eigen::VectorXd aa = nominal.series(a);
-    const double amax = positive(aa.cwiseAbs().maxCoeff(), 1.0);
-    auto rewire = [&](Candidate& c, const std::string& by) {
-      for (auto& d : c.model.derivatives) d.second = replace_symbol(d.second, a, by);
-      for (auto& d : c.model.signals) d.second = replace_symbol(d.second, a, by);
-    };
-    if (!excluded("input_saturation")) {
-      Candidate c{"input_saturation", a, "", {}, {}, {}, model, 0};
-      const std::string p = fresh_name(c.model, a + "_max");
-      add_param(c, p, 0.9 * amax, amax, 0.0, 1e300, 1e300);
-      const std::string s = fresh_name(c.model, a + "_sat");
-      c.term = "min(max(" + a + ", -" + p + "), " + p + ")";
-      c.model.sampled.emplace_back(s, c.term);
-      rewire(c, s);
-      out.push_back(std::move(c));
-    }
-    if (!excluded("dead_zone")) {
-      Candidate c{"dead_zone", a, "", {}, {}, {}, model, 0};
-      const std::string p = fresh_name(c.model, a + "_dz");
-      add_param(c, p, 0.02 * amax, 0.1 * amax, 0.0);
-      const std::string s = fresh_name(c.model, a + "_eff");
-      c.term = a + " - min(max(" + a + ", -" + p + "), " + p + ")";
-      c.model.sampled.emplace_back(s, c.term);
-      rewire(c, s);
-      out.push_back(std::move(c));
-    }
-    if (!excluded("backlash")) {
-      Candidate c{"backlash", a, "", {}, {}, {}, model, 0};
-      const std::string p = fresh_name(c.model, a + "_play");
-      add_param(c, p, 0.02 * amax, 0.1 * amax, 0.0);
-      const std::string s = fresh_name(c.model, a + "_bl");
-      c.term = "max(" + a + " - " + p + ", min(" + a + " + " + p + ", prev(" + s + ", 1)))";
-      c.model.sampled.emplace_back(s, c.term);
-      rewire(c, s);
-      out.push_back(std::move(c));
-    }
-    if (!excluded("time_delay"))
-      for (int n : {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64}) {
-        if (n >= N / 10) break;
-        out.push_back(delay_candidate(model, a, n));
-      }
-  }
-  // --- sensors
-  for (std::size_t j = 0; j < model.outputs.size(); ++j) {
-    const std::string y = model.outputs[j].first, col = model.outputs[j].second;  // captured below (Clang 14)
-    const auto& mv = measured.column(col);
-    const double lo = *std::min_element(mv.begin(), mv.end()), hi = *std::max_element(mv.begin(), mv.end());
-    const double range = positive(hi - lo, 1.0);
-    const Eigen::VectorXd yy = nominal.series(y);
-    auto sensor = [&](const std::string& effect, const std::string& suffix, auto setup) {
-      if (excluded(effect)) return;
-      Candidate c{effect, y, "", {}, {}, {}, model, 0};
-      const std::string s = fresh_name(c.model, y + suffix);
-      setup(c, s);
-      c.model.sampled.emplace_back(s, c.term);
-      c.model.outputs[j].first = s;
-      out.push_back(std::move(c));
-    };
-    sensor("output_saturation", "_sensor", [&](Candidate& c, const std::string&) {
-      const std::string a = fresh_name(c.model, y + "_lo");
-      add_param(c, a, lo, range, -1e300, 1e300, -1e300);
-      const std::string b = fresh_name(c.model, y + "_hi");
-      add_param(c, b, hi, range, -1e300, 1e300, 1e300);
-      c.term = "min(max(" + y + ", " + a + "), " + b + ")";
-    });
-    sensor("hysteresis", "_h", [&](Candidate& c, const std::string& s) {
-      const std::string w = fresh_name(c.model, y + "_w");
-      add_param(c, w, 0.01 * range, 0.05 * range, 0.0);
-      c.term = "max(" + y + " - " + w + ", min(" + y + " + " + w + ", prev(" + s + ", 1)))";
-    });
-    // A mirror only makes sense if the data stay non-negative while the model goes negative.
-    if (lo > -0.02 * range && yy.minCoeff() < 0)
-      sensor("absolute_value_sensor", "_abs", [&](Candidate& c, const std::string&) {
-        c.term = "abs(" + y + ")";
-        c.restart = true;
-      });
-  }
+  for (const auto& a : st.actuators) actuator_candidates(k, a);
+  for (std::size_t j = 0; j < model.outputs.size(); ++j) sensor_candidates(k, j);
   return out;
 }
 

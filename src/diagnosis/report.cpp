@@ -60,12 +60,23 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
   J effects = J::array();
   for (const auto& e : d.effects) {
     J ps = J::object();
-    for (const auto& p : e.parameters)
+    for (const auto& p : e.parameters) {
+      J oe_delta = J::object();
+      for (std::size_t k = 0; k < p.oe_delta.size() && k < d.outputs.size(); ++k) oe_delta[d.outputs[k]] = num(p.oe_delta[k]);
       ps[p.name] = {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
                     {"statistical_95", {num(p.stat_lo), num(p.stat_hi)}},
                     {"interval_output_error", {num(p.oe_lo), num(p.oe_hi)}},
-                    {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)}};
-    effects.push_back({{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence}});
+                    {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)},
+                    {"role", p.role},
+                    {"interval_kind", "bounded-error interval: holds when |e| <= the error bounds below (an assumption)"},
+                    {"error_bound", {{"output_error", oe_delta}, {"equation_error", p.has_ee ? num(p.ee_delta) : J(nullptr)}}}};
+    }
+    J rules = J::array();
+    for (const auto& r : e.rules)
+      rules.push_back({{"name", r.name}, {"value", num(r.value)}, {"threshold", r.threshold}, {"applies", r.applies}, {"passed", r.passed},
+                       {"rule", r.description}});
+    effects.push_back({{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence},
+                       {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}});
   }
   j["effects"] = effects;
   J noise = J::object();
@@ -86,6 +97,23 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
   j["augmented"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_augmented_estimation);
   j["augmented"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_augmented_validation);
   j["verdict"] = d.verdict;
+  j["answer"] = d.nothing_missing ? "nothing_missing" : d.unexplained ? "unexplained" : "missing";
+  j["unexplained"] = d.unexplained;
+  j["where"] = d.where;
+  j["nominal"]["calibration_note"] = d.nominal_note;
+  j["nominal"]["far_from_data"] = d.nominal_far;
+  J sig = J::object();
+  for (std::size_t i = 0; i < d.noise_sigma.size() && i < d.outputs.size(); ++i) sig[d.outputs[i]] = num(d.noise_sigma[i]);
+  j["noise"] = {{"sigma", sig}, {"method", d.noise_note}};
+  auto tests = [&](const ResidualTests& t) {
+    J b = J::object();
+    for (std::size_t i = 0; i < t.bound.size() && i < d.outputs.size(); ++i) b[d.outputs[i]] = num(t.bound[i]);
+    return J{{"falsified", t.falsified}, {"white", t.white}, {"worst_autocorrelation_z", num(t.worst_autocorrelation_z)},
+             {"white_threshold", num(t.white_threshold)}, {"independent", t.independent}, {"within_noise", t.within_noise()},
+             {"worst_z", num(t.worst_z)}, {"z_threshold", num(t.z_threshold)}, {"worst_signal", t.worst_signal}, {"bound", b}};
+  };
+  j["residual_tests"] = {{"nominal", tests(d.nominal_tests)}, {"final", tests(d.final_tests)}};
+  j["hypotheses"] = {{"screened", d.hypotheses_screened}, {"refined", d.hypotheses_refined}};
   j["nothing_missing"] = d.nothing_missing;
   j["bound_note"] = d.bound_note;
   j["seconds"] = d.seconds;
@@ -135,16 +163,23 @@ std::string diagnosis_text(const Diagnosis& d) {
     o << "  " << n.output << ": sigma = " << fmt(n.estimate.sigma) << " (" << noise_method_name(n.estimate.method) << ", "
       << n.record << " record: " << n.estimate.reason << ")\n";
   if (d.data_hypothesis.found) o << "About the data (not physics): " << d.data_hypothesis.finding << ".\n";
+  o << "Nominal calibration: " << d.nominal_note << "\n";
   o << "Verdict: " << d.verdict << "\n";
   for (std::size_t k = 0; k < d.effects.size(); ++k) {
     const auto& e = d.effects[k];
     o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
-    for (const auto& p : e.parameters)
-      o << "     " << p.name << " = " << fmt(p.estimate, 5) << ", guaranteed interval [" << fmt(p.lo, 5) << ", "
-        << fmt(p.hi, 5) << "]"
-        << (p.has_ee ? " (equation error [" + fmt(p.ee_lo, 5) + ", " + fmt(p.ee_hi, 5) + "], output error [" + fmt(p.oe_lo, 5) + ", " + fmt(p.oe_hi, 5) + "])"
-                     : " (output error)")
-        << ", statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
+    for (const auto& p : e.parameters) {
+      o << "     " << p.name << " = " << fmt(p.estimate, 5) << ", bounded-error interval [" << fmt(p.lo, 5) << ", " << fmt(p.hi, 5)
+        << "] under |e| <= delta: output error [" << fmt(p.oe_lo, 5) << ", " << fmt(p.oe_hi, 5) << "] with delta =";
+      for (std::size_t k = 0; k < p.oe_delta.size(); ++k) o << (k ? "," : "") << " " << fmt(p.oe_delta[k], 3) << " (" << d.outputs[k] << ")";
+      if (p.has_ee) o << "; equation error [" << fmt(p.ee_lo, 5) << ", " << fmt(p.ee_hi, 5) << "] with delta = " << fmt(p.ee_delta, 3);
+      o << "; statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
+    }
+    if (e.delay_samples > 0) o << "     delay: " << e.delay_samples << " samples\n";
+    o << "     rules:";
+    for (const auto& r : e.rules)
+      if (r.applies) o << " " << r.name << " " << fmt(r.value, 3) << (r.passed ? " >= " : " < ") << fmt(r.threshold, 3) << ";";
+    o << "\n";
     o << "     evidence: " << e.evidence << "\n";
   }
   if (!d.effects.empty()) {

@@ -1,9 +1,12 @@
 // Helpers shared by the stages of the diagnosis.
 
+#include <algorithm>
 #include <cmath>
 
 #include "diagnosis/stages.hpp"
 #include "sets/core/error.hpp"
+#include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/numeric/interval.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -62,6 +65,46 @@ Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, 
     for (Eigen::Index j = 0; j < ny; ++j) J.col(static_cast<Eigen::Index>(i)).segment(j * N, N) = (y1.col(j) - y0.col(j)) / h;
   }
   return J;
+}
+
+OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
+                                            const Eigen::VectorXd& estimate, const std::vector<int>& free,
+                                            const std::vector<double>& scale) {
+  OutputErrorIntervals out;
+  const Eigen::Index N = R.rows(), ny = R.cols();
+  out.stride = static_cast<int>(std::max<Eigen::Index>(1, N / 1500));
+  const Eigen::Index stride = out.stride, m = (N + stride - 1) / stride;
+  Eigen::MatrixXd Phi(m * ny, J.cols());
+  Eigen::VectorXd yy(m * ny), dd = Eigen::VectorXd::Ones(m * ny);
+  for (Eigen::Index j = 0; j < ny; ++j) {
+    double delta = 0;
+    for (Eigen::Index i = 0; i < m; ++i) delta = std::max(delta, std::abs(R(i * stride, j)));
+    delta = 1.5 * delta + 1e-300;
+    out.delta.push_back(delta);
+    // Rows in units of the bound and columns in units of each parameter's scale keep the LP
+    // well conditioned (position residuals of 1e-6 m next to forces of 1e2 N otherwise).
+    for (Eigen::Index i = 0; i < m; ++i) {
+      for (Eigen::Index c = 0; c < J.cols(); ++c) Phi(j * m + i, c) = J(j * N + i * stride, c) * scale[static_cast<std::size_t>(c)] / delta;
+      yy[j * m + i] = R(i * stride, j) / delta;
+    }
+  }
+  try {
+    const PuiResult pr = pui(FeasibleParameterSet::from_data(Phi, yy, dd));
+    if (pr.empty()) {
+      out.note = "the linearised strips were found inconsistent, no PUI";
+      return out;
+    }
+    out.built = true;
+    out.guaranteed = pr.guaranteed;
+    for (std::size_t i = 0; i < free.size(); ++i) {
+      const Interval theta = Interval(estimate[free[i]]) + pr.box[static_cast<Eigen::Index>(i)] * scale[i];  // outward rounded
+      out.lo.push_back(theta.lower());
+      out.hi.push_back(theta.upper());
+    }
+  } catch (const std::exception& e) {
+    out.note = std::string("PUI computation failed: ") + e.what();
+  }
+  return out;
 }
 
 std::string fmt(double x, int prec) {

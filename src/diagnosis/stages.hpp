@@ -59,6 +59,23 @@ Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, 
 /// ok = false when `coarse` blows up with the final substeps.
 CalibrationResult refine_with_final_substeps(const Context& c, const Simulator& exact, const Eigen::VectorXd& coarse,
                                              const std::vector<int>& free, const CalibrationOptions& options);
+/// Bounded-error intervals of the free parameters from the output error linearised at the
+/// estimate: strips |r_t - J_t dtheta| <= delta_j on every stride-th sample (about 1500 per
+/// output), delta_j = 1.5 x the largest |residual| of output j there (the smallest bound under
+/// which the estimate itself is consistent, with a margin for the truth, which sees the noise).
+/// J: output_jacobian's; R: measured - simulated outputs. Stage 4 reports them; stage 3's nested
+/// rule asks whether they exclude a special case.
+struct OutputErrorIntervals {
+  bool built = false;          // false: the strips were inconsistent, or the LPs failed (note)
+  std::vector<double> lo, hi;  // per free parameter, parameter units, outward rounded
+  std::vector<double> delta;   // the bound per output
+  bool guaranteed = false;     // every finite end certified by a safe bound
+  int stride = 1;
+  std::string note;
+};
+OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
+                                            const Eigen::VectorXd& estimate, const std::vector<int>& free,
+                                            const std::vector<double>& scale);
 std::string fmt(double x, int prec = 3);
 std::string fixed1(double x);
 
@@ -81,6 +98,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
 struct NoiseFloor {
   std::vector<double> sigma;  // per output (estimates: sets/data/noise_level.hpp)
   double cost = 0;            // the misfit (cost_of units) the noise alone gives
+  std::string note;           // how sigma was estimated
 };
 /// The noise level of every output from the calibrated nominal's residual (and the inputs'
 /// repeats), on every record, the most reliable method's value used for all; fills d.noise.

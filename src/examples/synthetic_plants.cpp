@@ -55,7 +55,7 @@ ModelFile tank() {
 }
 
 Recording generate(const ModelFile& truth, const std::string& out_col, int n, double Ts, double ulo, double uhi,
-                   unsigned seed, double init_level) {
+                   unsigned seed, double init_level, double* sigma = nullptr) {
   Recording r;
   r.source = "synthetic";
   std::vector<double> t(static_cast<std::size_t>(n));
@@ -69,6 +69,7 @@ Recording generate(const ModelFile& truth, const std::string& out_col, int n, do
   const double sd = std::sqrt((y.array() - y.mean()).square().mean());
   std::mt19937 rng(seed * 7919u + 13u);
   std::normal_distribution<double> noise(0.0, 0.01 * sd);  // 1 % of the output's spread
+  if (sigma) *sigma = 0.01 * sd;
   std::vector<double> meas(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) meas[static_cast<std::size_t>(k)] = y[k] + noise(rng);
   r.add(out_col, meas);
@@ -117,7 +118,7 @@ SyntheticPlant synthetic_plant(const std::string& name) {
   if (name == "sqrt_outflow") {
     truth.parameters.push_back(par("b", 0.6));
     acc = "(kin*u - b*sqrt(max(h, 0)))/A";
-    p.true_values = {{"a_h", 0.6}};
+    p.true_values = {{"a_sqrt", 0.6}};
     set("a", 0.0);
   }
   if (name == "backlash") {
@@ -156,7 +157,9 @@ SyntheticPlant synthetic_plant(const std::string& name) {
   const double ulo = is_tank ? 0.1 : -2.0, uhi = is_tank ? 1.5 : 2.0;
   const std::string col = is_tank ? "h_meas" : "x_meas";
   const double h0 = is_tank ? 0.5 : 0.0;
-  p.estimation = generate(truth, col, n, Ts, ulo, uhi, seed, h0);
+  double sigma = 0;
+  p.estimation = generate(truth, col, n, Ts, ulo, uhi, seed, h0, &sigma);
+  p.noise_sigma = {sigma};
   p.validation = generate(truth, col, n, Ts, ulo, uhi, seed + 1000, h0);
   p.estimation.source = name + " (estimation)";
   p.validation.source = name + " (validation)";
@@ -164,6 +167,12 @@ SyntheticPlant synthetic_plant(const std::string& name) {
   nominal.name = "nominal model for synthetic plant " + name + " (effect left out)";
   p.nominal = nominal;
   p.truth = truth;
+  if (p.true_effect != "none") {
+    const bool actuator = name == "backlash" || name == "dead_zone" || name == "input_saturation" || name == "time_delay";
+    const bool sensor = name == "output_saturation" || name == "hysteresis" || name == "absolute_value_sensor";
+    const std::string where = is_tank ? "h" : actuator ? "u" : sensor ? "x" : "v";
+    p.effects.push_back({name, where, p.true_values, 0.0});
+  }
   return p;
 }
 

@@ -159,6 +159,24 @@ TEST(Diagnosis, SyntheticCoulombPlantIsNamedAndCleanPlantGetsNothing) {
   }
 }
 
+// Nested laws: Coulomb friction is Stribeck friction with Fs = 0, so the sparser Coulomb law wins
+// unless the Stribeck law passes every rule against it and its bounded-error interval of Fs
+// excludes 0. On the suite's Stribeck plant (Fs = 0.35 against Fc = 0.15) the data exclude it; on
+// EMPS (EmpsNamesCoulombFrictionAndOffset) asymmetric friction does not get past Coulomb + offset.
+TEST(Diagnosis, RicherLawNamedOnlyWhenTheDataExcludeItsSpecialCase) {
+  const SyntheticPlant p = synthetic_plant("stribeck_friction");
+  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation);
+  ASSERT_FALSE(d.effects.empty()) << d.verdict;
+  EXPECT_EQ(d.effects.front().name, "stribeck_friction") << d.effects.front().evidence;
+  EXPECT_NE(d.effects.front().evidence.find("coulomb_friction, its special case"), std::string::npos)
+      << d.effects.front().evidence;
+  for (const auto& ep : d.effects.front().parameters) {
+    if (ep.role == "Fs") {
+      EXPECT_GT(ep.lo, 0.0);
+    }
+  }
+}
+
 // A plant whose stiffness steps from 4 to 7 at t = 23.7 s, diagnosed from the constant-parameter
 // model: the time-varying estimates must name k and a window holding the step.
 TEST(Diagnosis, VaryingParameterNamesTheSteppingParameterAndWhen) {

@@ -1,8 +1,10 @@
 #pragma once
-// Discrepancy diagnosis: calibrate a nominal model, locate where it fails (time windows,
-// operating regions, frequency band, parameters that would have to vary), name the missing
-// physics from the catalogue (competing hypotheses, fewest terms, judged on validation), add it,
-// and give the new parameters with uncertainty intervals. See docs/methods/diagnosis.md.
+// Discrepancy diagnosis: calibrate a nominal model (several starts), locate where it fails (time
+// windows, operating regions, frequency band, parameters that would have to vary), screen the
+// catalogue's hypotheses by least squares, refine the best few by output error, name the missing
+// physics that passes every documented rule (or say that nothing is missing, or that the mismatch
+// is real but unexplained), add it, and give the new parameters with bounded-error intervals.
+// See docs/methods/diagnosis.md.
 
 #include <Eigen/Core>
 
@@ -11,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "sets/diagnosis/acceptance.hpp"
+#include "sets/diagnosis/residual_tests.hpp"
 #include "sets/models/model_file.hpp"
 #include "sets/data/intersample.hpp"
 #include "sets/data/noise_level.hpp"
@@ -23,9 +27,13 @@ struct DiagnosisOptions {
                                 // 1, 2, 5 whose fits agree with final_substeps within 0.2 points
   int final_substeps = 10;      // RK4 substeps for the reported fits
   int max_effects = 3;
-  double min_cost_reduction = 0.10;  // a hypothesis must remove >= 10 % of the squared misfit
-  double sparsity_tolerance = 1.25;  // a simpler hypothesis wins if its misfit is within this factor
-  double noise_floor_factor = 1.5;   // stop when the misfit is below this x the noise's own misfit (0: never)
+  double min_cost_reduction = 0.10;  // a hypothesis must remove >= 10 % of the squared misfit, and its
+                                     // own term must be worth >= 10 % (acceptance.hpp)
+  double min_validation_reduction = 0.05;  // ... and >= 5 % on the validation record
+  double sparsity_tolerance = 1.25;  // the misfit each new parameter must buy (factor per parameter)
+  double noise_floor_factor = 1.5;   // > 0: stop as soon as the residual tests say the model is within
+                                     // the noise; 0: never (hypotheses must fail the rules on their own)
+  int refine = 4;                    // hypotheses refined by output error per round (best screened)
   int threads = 2;
   int varying_segments = 0;          // segments of the time-varying estimates; 0: N/500 within [10, 30]
   std::function<void(const std::string&)> progress;  // one line per stage (optional)
@@ -77,21 +85,29 @@ struct FrequencyBand {
 
 struct EffectParameter {
   std::string name;
+  std::string role;                 // the catalogue's role (e.g. "Fc"), whatever the symbol is called
   double estimate = 0;
-  double lo = 0, hi = 0;            // guaranteed PUI under the stated bounds: the intersection of the
-                                    // output-error and equation-error PUIs (the output-error one alone
-                                    // when no equation-error PUI was built); +-inf if unbounded
-  double oe_lo = 0, oe_hi = 0;      // PUI of the output error linearised at the estimate
-  bool has_ee = false;              // an equation-error PUI was built (sets/equation_error.hpp)
+  double lo = 0, hi = 0;            // bounded-error interval: holds under the error bounds below (an
+                                    // assumption, not a theorem): the intersection of the output-error
+                                    // and equation-error PUIs (the output-error one alone when no
+                                    // equation-error PUI was built); +-inf if unbounded
+  double oe_lo = 0, oe_hi = 0;      // PUI of the output error linearised at the estimate ...
+  std::vector<double> oe_delta;     // ... under |e_j| <= oe_delta[j] per output (1.5 x largest residual)
+  bool has_ee = false;              // an equation-error PUI was built (sets/equation_error.hpp) ...
   double ee_lo = 0, ee_hi = 0;
+  double ee_delta = 0;              // ... under |integrated equation error| <= ee_delta
   double stat_lo = 0, stat_hi = 0;  // 95 % statistical interval (white-noise assumption)
 };
 
 struct DiagnosedEffect {
   std::string name, equation, term, evidence;
+  std::string placement;                 // structural place (physics_catalogue.hpp)
   std::vector<EffectParameter> parameters;
+  int delay_samples = 0;                 // time_delay: the delay in samples
   double cost_reduction_estimation = 0;  // share of the misfit removed when it was added
-  double cost_reduction_validation = 0;
+  double cost_reduction_validation = 0;  // (the rules' values; NaN-free: 0 without validation)
+  double screening_gain = 0;             // the linearised least-squares gain that shortlisted it
+  std::vector<RuleCheck> rules;          // every documented rule, its value and threshold
 };
 
 /// The estimated noise level of one output channel (sets/data/noise_level.hpp): estimated on
@@ -129,9 +145,21 @@ struct Diagnosis {
   std::vector<MismatchRegion> regions;
   std::vector<VaryingParameter> varying;
   std::vector<FrequencyBand> bands;
-  std::vector<DiagnosedEffect> effects;  // ranked, most important first; empty: nothing missing
-  bool nothing_missing = false;          // nominal explains the data to within the noise
+  std::vector<DiagnosedEffect> effects;  // ranked, most important first
+  // The three answers: nothing_missing (the calibrated nominal is within the noise: both residual
+  // tests agree), effects named, or unexplained (the mismatch is real, no catalogue effect passes
+  // every rule; `where` says where it is).
+  bool nothing_missing = false;
+  bool unexplained = false;
+  std::string where;                     // unexplained: where the mismatch is
   std::string verdict;                   // one sentence
+  std::string nominal_note;              // how the nominal was calibrated (starts, minima, stalls)
+  bool nominal_far = false;              // the nominal could not be brought near the data
+  ResidualTests nominal_tests;           // the calibrated nominal's residual tests
+  ResidualTests final_tests;             // the final (augmented) model's
+  std::vector<double> noise_sigma;       // estimated noise level per output (measurement units)
+  std::string noise_note;                // how it was estimated
+  int hypotheses_screened = 0, hypotheses_refined = 0;
   std::vector<double> error_bound;       // per output, used for windows and PUIs
   std::string bound_note;
   std::vector<OutputNoise> noise;        // per output

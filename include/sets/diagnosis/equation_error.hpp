@@ -8,6 +8,8 @@
 // (the state's noise bound); the equation error is bounded by a stated delta. The result is the
 // PUI box of that FPS (sets/feasible_parameter_set.hpp). See docs/methods/diagnosis.md.
 
+#include <Eigen/Core>
+
 #include <string>
 #include <vector>
 
@@ -31,6 +33,39 @@ struct EquationErrorResult {
   double delta = 0;                     // equation-error bound used (units of the integrated equation)
   int rows = 0, window = 0, order = 0;  // strips, window (samples), 1 or 2 integrations
 };
+
+/// The regression of one window: theta (the free parameters acting on the equation, the inertia
+/// first when there is one) satisfies Phi theta in Y + [-delta, delta] at every strip when the
+/// integrated equation error is below delta. Phi_mid, Y_mid: the central values (estimates of the
+/// differentiated states, no radius); residual: Y_mid - Phi_mid theta at the model's values.
+struct EquationErrorRegression {
+  bool built = false;
+  std::string note;                     // why not, or how it was built
+  std::vector<std::string> parameters;  // the unknowns
+  std::vector<double> scale;            // a typical size of each (|model value| or 1)
+  bool has_inertia = false;             // parameters[0] multiplies the derivative
+  IntervalMatrix Phi;
+  IntervalVector Y;
+  Eigen::MatrixXd Phi_mid;
+  Eigen::VectorXd Y_mid, residual;
+  int rows = 0, window = 0, order = 0;
+};
+/// One regression per window (samples). Never throws for a model it cannot handle.
+std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile& model, const Recording& data,
+                                                               const std::string& state, const std::vector<int>& windows);
+/// The windows tried by default: N/500 .. N/25 samples within [4, 500], N >= 8 w.
+std::vector<int> equation_error_windows(int samples);
+
+/// Least-squares estimates from the equation error (central regressors, one window, default
+/// N/200): a starting point, no guarantee (an estimate: errors in the differentiated states bias it).
+struct EquationErrorFit {
+  bool built = false;
+  std::string note;
+  std::vector<std::string> parameters;
+  std::vector<double> estimate;
+  double relative_residual = 1;  // ||Y - Phi theta|| / ||Y - mean Y|| (0: exact)
+};
+EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window = 0);
 
 /// PUIs of the free parameters of the equation of `state`, with the model's parameter values as
 /// the estimate the bound is measured at. Never throws for a model it cannot handle: `built` is

@@ -5,6 +5,7 @@
 #include <boost/math/distributions/normal.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -601,6 +602,32 @@ Eigen::VectorXd floored_trig_solution(LinearProgram& lp, const std::function<Eig
     if (cuts == 0 || round == 8) return c;
   }
 }
+
+// The LP for |W^-1|^2 = unit * (x_0 + sum_k x_k cos kw): minimise t subject to
+// |W^-1|^2 >= delta^2 and W1^2 (|W^-1|^2 - delta^2) <= t on the grid, >= floor on 2048 points
+// (and at the cutting planes); returns the coefficients c = unit * x.
+Eigen::VectorXd weight_lp_solution(const Eigen::Ref<const Eigen::VectorXd>& grid,
+                                   const Eigen::Ref<const Eigen::VectorXd>& delta, const Eigen::VectorXd& W1, int m,
+                                   double floor, double unit) {
+  const int nv = m + 2;
+  LinearProgram lp(nv);
+  const std::function<Eigen::VectorXd(double)> cosrow = [&](double w) {
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(nv);
+    for (int k = 0; k <= m; ++k) r[k] = std::cos(k * w);
+    return r;
+  };
+  for (Eigen::Index j = 0; j < grid.size(); ++j) {
+    const double d2 = delta[j] * delta[j];
+    lp.add_row(cosrow(grid[j]), d2 / unit, inf);
+    Eigen::VectorXd r = W1[j] * W1[j] * unit * cosrow(grid[j]);
+    r[nv - 1] = -1;
+    lp.add_row(r, -inf, W1[j] * W1[j] * d2);
+  }
+  const int nd = 2048;
+  for (int d = 0; d < nd; ++d) lp.add_row(cosrow(pi * d / (nd - 1)), floor / unit, inf);
+  lp.set_objective_coordinate(nv - 1, Sense::minimize);
+  return unit * floored_trig_solution(lp, cosrow, m, floor / unit);
+}
 }  // namespace
 
 std::complex<double> WeightFit::inverse(double w) const { return polynomial_at(h, w); }
@@ -615,29 +642,23 @@ WeightFit fit_weight(const Eigen::Ref<const Eigen::VectorXd>& grid, const Eigen:
     if (!(delta[j] >= 0 && std::isfinite(delta[j]))) throw InputError("weight: delta[" + num(j) + "] is not a finite value >= 0");
   Eigen::VectorXd W1 = o.weight.size() ? o.weight : Eigen::VectorXd::Ones(nw);
   if (W1.size() != nw) throw InputError("weight W1: " + num(W1.size()) + " values for " + num(nw) + " frequencies");
-  const int m = o.degree, nv = m + 2;
+  const int m = o.degree;
   const double dmax = delta.maxCoeff();
   if (!(dmax > 0)) throw InputError("weight: every delta is zero");
-  LinearProgram lp(nv);
-  const std::function<Eigen::VectorXd(double)> cosrow = [&](double w) {
-    Eigen::VectorXd r = Eigen::VectorXd::Zero(nv);
-    for (int k = 0; k <= m; ++k) r[k] = std::cos(k * w);
-    return r;
-  };
-  for (int j = 0; j < nw; ++j) {
-    const double d2 = delta[j] * delta[j];
-    lp.add_row(cosrow(grid[j]), d2, inf);
-    Eigen::VectorXd r = W1[j] * W1[j] * cosrow(grid[j]);
-    r[nv - 1] = -1;
-    lp.add_row(r, -inf, W1[j] * W1[j] * d2);
-  }
   // |W^-1|^2 >= a quarter of the smallest delta^2 between grid points too: W stays bounded.
-  const int nd = 2048;
   const double floor = 0.25 * delta.minCoeff() * delta.minCoeff() + 1e-8 * dmax * dmax;
-  for (int d = 0; d < nd; ++d) lp.add_row(cosrow(pi * d / (nd - 1)), floor, inf);
-  lp.set_objective_coordinate(nv - 1, Sense::minimize);
+  // The same LP in three units of |W^-1|^2: GLPK fails (glp_simplex code 5, or a wrong
+  // "optimum") on some runs in one unit and not in another when delta spans decades.
   WeightFit fit;
-  fit.trig = floored_trig_solution(lp, cosrow, m, floor);
+  const double units[] = {dmax * std::max(delta.minCoeff(), 1e-4 * dmax), dmax * dmax, 1.0};
+  for (std::size_t i = 0; i < std::size(units); ++i) {
+    try {
+      fit.trig = weight_lp_solution(grid, delta, W1, m, floor, units[i]);
+      break;
+    } catch (const NumericalError&) {
+      if (i + 1 == std::size(units)) throw;
+    }
+  }
   const double pmin = certified_trig_minimum(fit.trig);
   if (!(pmin > 0))
     throw NumericalError("weight: |W^-1|^2 is not certified positive (curvature bound " +

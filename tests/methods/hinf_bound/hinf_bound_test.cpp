@@ -534,11 +534,10 @@ RC_GTEST_PROP(HinfDataBound, BoundHoldsForEverySystemConsistentWithTheData, ()) 
   RC_ASSERT(weighted_error(G1, R.nominal.model, Eigen::VectorXd::Ones(1), 4096) <= R.unweighted.b_data);
 }
 
-// The app's example at N = 500 (seed 1, the 15th data set): the first LP solution for |W^-1|^2
-// dipped below zero between its 2048 floor rows ("not certified positive", the run failed). The
-// cutting planes add the dips as rows; the weight is then certified positive on all of [0, pi].
-TEST(HinfWeight, StaysPositiveBetweenTheLpRows) {
-  const TransferFunction G0 = sets::hakvoort::system();
+namespace {
+// The app's example (Kautz n = 40, 150 frequencies, its priors): the data set `run` of seed 1.
+HinfBoundResult app_example_run(int N, int run, TransferFunction& G0) {
+  G0 = sets::hakvoort::system();
   HinfStructure st;
   st.basis = OrthonormalBasis::kautz(std::polar(0.93, 0.66));
   st.order = 40;
@@ -550,12 +549,32 @@ TEST(HinfWeight, StaysPositiveBetweenTheLpRows) {
   st.priors = sets::hakvoort::priors_for(G0, st.basis, given, note);
   std::mt19937_64 rng(1);
   sets::hakvoort::Data d;
-  for (int run = 1; run <= 15; ++run) d = sets::hakvoort::simulate(G0, 500, 0.02, false, rng);
-  const HinfBoundResult R = hinf_bound(HinfData{d.u, d.y, {}}, st);
+  for (int r = 1; r <= run; ++r) d = sets::hakvoort::simulate(G0, N, 0.02, false, rng);
+  return hinf_bound(HinfData{d.u, d.y, {}}, st);
+}
+
+void expect_a_valid_weight(const HinfBoundResult& R, const TransferFunction& G0) {
   const double floor = 0.25 * R.delta.minCoeff() * R.delta.minCoeff();
   double lowest = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 100000; ++i) lowest = std::min(lowest, std::norm(R.weight.inverse(pi * i / 99999)));
   EXPECT_GT(lowest, 0.5 * floor);
-  for (Eigen::Index j = 0; j < st.grid.size(); ++j) EXPECT_GE(std::abs(R.weight.inverse(st.grid[j])), R.delta[j]);
+  for (Eigen::Index j = 0; j < R.set.frequencies.size(); ++j)
+    EXPECT_GE(std::abs(R.weight.inverse(R.set.frequencies[j])), R.delta[j]);
   EXPECT_LE(weighted_error([&](double w) { return G0(w); }, R.nominal.model, R.weight.h), R.bound.b);
+}
+}  // namespace
+
+// N = 500, the 15th data set: the first LP solution for |W^-1|^2 dipped below zero between its
+// 2048 floor rows ("not certified positive", the run failed). The cutting planes add the dips as
+// rows; the weight is then certified positive on all of [0, pi].
+TEST(HinfWeight, StaysPositiveBetweenTheLpRows) {
+  TransferFunction G0;
+  expect_a_valid_weight(app_example_run(500, 15, G0), G0);
+}
+
+// N = 1 000, the 28th data set: GLPK failed on the unscaled LP (delta in [0.02, 0.78], rows up to
+// 1/delta^2); with the variables in units of max delta^2 it solves.
+TEST(HinfWeight, LpInUnitsOfTheLargestDelta) {
+  TransferFunction G0;
+  expect_a_valid_weight(app_example_run(1000, 28, G0), G0);
 }

@@ -1,0 +1,43 @@
+#pragma once
+// The documented rules a hypothesis must pass before the diagnosis says "missing: X"
+// (docs/methods/diagnosis.md, step 3). Every rule is a number compared with a threshold, so the
+// report can show each one and a test can make each one fail.
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace sets {
+
+/// What the rules judge a refined hypothesis on. Costs are squared misfits summed over outputs,
+/// sum_j ||y_j - yhat_j||^2 / ||y_j - mean y_j||^2.
+struct HypothesisEvidence {
+  double cost_null = 0;     // the current model re-calibrated (same budget): the baseline
+  double cost = 0;          // with the effect, calibrated
+  double cost_neutral = std::numeric_limits<double>::quiet_NaN();  // effect switched off at the
+                                                                   // calibrated point (NaN: no neutral value)
+  double cost_null_validation = std::numeric_limits<double>::quiet_NaN();  // NaN: no validation record
+  double cost_validation = std::numeric_limits<double>::quiet_NaN();
+  double noise_cost = 0;    // the misfit the measurement noise alone gives on the estimation record
+};
+
+struct AcceptanceRules {
+  double min_gain = 0.10;             // share of the estimation misfit removed
+  double min_validation_gain = 0.05;  // share of the validation misfit removed
+  double min_own_term = 0.10;         // share lost when its own term is switched off
+  double noise_multiple = 1.0;        // misfit removed / the noise's own misfit
+};
+
+struct RuleCheck {
+  std::string name;         // stable: "estimation_gain", "beyond_noise", "own_term", "validation_gain"
+  std::string description;  // the rule in words
+  double value = 0, threshold = 0;
+  bool applies = true;      // false: not applicable (no validation record, no neutral value)
+  bool passed = true;
+};
+
+std::vector<RuleCheck> check_rules(const HypothesisEvidence& e, const AcceptanceRules& rules = {});
+/// Every applicable rule passed.
+bool passes(const std::vector<RuleCheck>& checks);
+
+}  // namespace sets

@@ -1,0 +1,47 @@
+#pragma once
+// Is a calibrated model within the noise? Two tests that must agree before the diagnosis says
+// "no physics is missing":
+//  * falsification: the output error linearised at the calibrated parameters, strips
+//    |r_t - J_t dtheta| <= delta_j with delta_j = c_N sigma_j (c_N = 1.2 sqrt(2 ln 2N): the largest
+//    of N Gaussian samples with a margin), has a common point (sets::find_conflict finds none);
+//  * whiteness: the residual's autocorrelation at lags 1, 2, 4, ... N/20, times sqrt(N), stays
+//    below Bonferroni's threshold for all the lags and outputs at the 1 % level.
+// Coloured measurement noise fails the whiteness test even for a correct model: the diagnosis
+// then cannot say "nothing is missing" and says that the residual is within the noise bound but
+// not white. Reported besides (not decisive): independence, the residual's correlation with every
+// input and simulated signal of the model (and their absolute values) at lags 0, +-1, +-2, ...
+// N/20 against Bartlett's variance for two autocorrelated series, (1/N) sum_k rho_rr(k) rho_ss(k).
+// The noise levels sigma_j are an input: an estimate, and the tests are only as good as it is.
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "sets/data/simulation.hpp"
+
+namespace sets {
+
+struct ResidualTests {
+  bool falsified = false;     // no parameter value of the linearised model keeps every residual inside
+  bool white = true;          // no autocorrelation of the residual above its threshold
+  double worst_autocorrelation_z = 0, white_threshold = 0;
+  int worst_lag = 0;
+  bool independent = true;    // no correlation with the model's signals above the threshold
+  double worst_z = 0;         // largest |correlation| / its standard deviation
+  double z_threshold = 0;
+  std::string worst_signal;   // where the largest correlation was found, e.g. "|v| at lag 4"
+  std::vector<double> bound;  // delta_j per output
+  bool within_noise() const { return !falsified && white; }
+  std::string summary() const;
+};
+
+/// Tests the residual of `sim`'s model at `parameters` (all parameters, model order) with
+/// `simulated` its simulation there; sigma: the noise level per output.
+ResidualTests test_residual(const Simulator& sim, const Eigen::VectorXd& parameters, const SimulationResult& simulated,
+                            const std::vector<double>& sigma);
+
+/// The bound factor c_N for N samples.
+double noise_bound_factor(Eigen::Index samples);
+
+}  // namespace sets

@@ -1,0 +1,55 @@
+#pragma once
+// The diagnosis run on suites of synthetic plants with known truth: the fixed suite
+// (synthetic_plants.hpp) and the randomised one (random_plants.hpp), scored as in issue 14:
+// first-named right on one-effect plants, both named on two-effect plants, invented effects on
+// clean plants, the confusion matrix, per-effect precision and recall, and whether the true
+// parameter values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sets/diagnosis/diagnosis.hpp"
+#include "sets/examples/synthetic_plants.hpp"
+
+namespace sets {
+
+struct SuiteCoverage {
+  std::string effect, role;
+  double truth = 0, lo = 0, hi = 0, estimate = 0;
+  bool inside = false;
+};
+
+struct SuitePlantResult {
+  std::string name, family, description;
+  std::vector<TrueEffect> truth;     // the true effects
+  std::vector<std::string> named;    // the effects named, ranked
+  std::vector<std::string> places;   // where each was named
+  std::string answer;                // "nothing_missing", "missing" or "unexplained"
+  double fit_nominal = 0, fit_augmented = 0;  // validation fit of the first output, percent
+  double seconds = 0;
+  std::vector<SuiteCoverage> coverage;  // true values that map cleanly, of effects named at the true place
+  std::vector<double> noise_ratio;   // estimated / true noise sigma per output
+  std::string error;                 // the diagnosis failed with this message
+  bool first_right() const;          // the first named effect is the (first) true one, or none for clean
+  bool all_named() const;            // every true effect is named
+};
+
+struct SuiteOptions {
+  int threads = 2;      // plants diagnosed at the same time (each diagnosis on one thread)
+  DiagnosisOptions diagnosis;  // threads and progress are set per plant
+  std::function<void(const SuitePlantResult&, int done, int total)> on_plant;  // progress (optional)
+};
+
+/// Plants random_plant(first_seed), ..., random_plant(first_seed + count - 1).
+std::vector<SuitePlantResult> run_random_suite(unsigned first_seed, int count, const SuiteOptions& options = {});
+/// The fixed suite (every plant, or only `plant`).
+std::vector<SuitePlantResult> run_fixed_suite(const std::string& plant = "", const SuiteOptions& options = {});
+/// Diagnoses one plant and scores it.
+SuitePlantResult run_suite_plant(const SyntheticPlant& plant, const DiagnosisOptions& options);
+
+/// Markdown: the per-plant table, the summary figures, the confusion matrix (one-effect and clean
+/// plants: true effect against first named), per-effect precision and recall, interval coverage.
+std::string suite_report(const std::vector<SuitePlantResult>& results, bool per_plant_table = true);
+
+}  // namespace sets

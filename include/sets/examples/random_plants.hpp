@@ -1,0 +1,37 @@
+#pragma once
+// The randomised plant suite of the diagnosis (issue 14): plants that no rule can be tuned to.
+// Each seed draws a family (one- and two-mass mechanics, DC motors, thermal nodes, tanks, a mass
+// in a sampled PD position loop), physical magnitudes over at least four decades, random symbol
+// and column names, a random sample time (from about 6 samples per period of the fastest mode to
+// several hundred), an excitation from rich (random steps, PRBS, multisine, filtered noise) to
+// poor (a few steps, one sine), white, coloured (AR(1)) or quantised measurement noise, and 0, 1
+// or 2 effects from the whole catalogue. Each effect is weak enough to hide (scaled so that it moves
+// the outputs by a drawn 4-40 % of their RMS before any calibration) and strong enough to matter
+// (the plant's own structure without it, calibrated on the noise-free outputs, still misses by at
+// least 2 noise levels RMS); a draw that cannot satisfy both is drawn again. The nominal model
+// leaves the effects out and starts from values off by up to a factor 1.8.
+// See docs/reproduction/diagnosis.md.
+
+#include <string>
+#include <vector>
+
+#include "sets/examples/synthetic_plants.hpp"
+
+namespace sets {
+
+struct RandomPlantOptions {
+  int effects = -1;         // -1: 0, 1 or 2 drawn (30 / 40 / 30 %)
+  std::string family;       // empty: drawn; else one of random_plant_families()
+  std::string effect;       // force this effect first (tests); empty: drawn
+  int samples = 0;          // 0: drawn in [2500, 5000]
+};
+
+std::vector<std::string> random_plant_families();
+/// Every catalogue effect the generator can put into some family.
+std::vector<std::string> random_plant_effects();
+
+/// The plant of this seed (deterministic). Throws InputError when `options` ask for a family or
+/// effect combination that cannot be drawn.
+SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options = {});
+
+}  // namespace sets

@@ -1,0 +1,403 @@
+#include "sets/diagnosis/screening.hpp"
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "sets/data/simulation.hpp"
+#include "sets/diagnosis/equation_error.hpp"
+#include "sets/fps/feasible_parameter_set.hpp"
+
+namespace sets {
+
+Eigen::VectorXd bounded_least_squares(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& lo,
+                                      const Eigen::VectorXd& hi) {
+  const Eigen::Index p = A.cols();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p);
+  if (p == 0) return x;
+  Eigen::VectorXd norm(p);
+  for (Eigen::Index c = 0; c < p; ++c) norm[c] = A.col(c).norm() > 0 ? A.col(c).norm() : 1.0;
+  std::vector<bool> fixed(static_cast<std::size_t>(p), false);
+  for (int pass = 0; pass <= p; ++pass) {
+    std::vector<Eigen::Index> freecols;
+    Eigen::VectorXd rhs = b;
+    for (Eigen::Index c = 0; c < p; ++c) {
+      if (fixed[static_cast<std::size_t>(c)]) rhs -= A.col(c) * x[c];
+      else freecols.push_back(c);
+    }
+    if (freecols.empty()) break;
+    Eigen::MatrixXd Af(A.rows(), static_cast<Eigen::Index>(freecols.size()));
+    for (std::size_t k = 0; k < freecols.size(); ++k) Af.col(static_cast<Eigen::Index>(k)) = A.col(freecols[k]) / norm[freecols[k]];
+    const Eigen::VectorXd z = Af.completeOrthogonalDecomposition().solve(rhs);
+    bool violated = false;
+    for (std::size_t k = 0; k < freecols.size(); ++k) {
+      const Eigen::Index c = freecols[k];
+      x[c] = z[static_cast<Eigen::Index>(k)] / norm[c];
+    }
+    for (Eigen::Index c = 0; c < p; ++c) {
+      if (fixed[static_cast<std::size_t>(c)]) continue;
+      if (x[c] < lo[c] || x[c] > hi[c]) {
+        x[c] = std::clamp(x[c], lo[c], hi[c]);
+        fixed[static_cast<std::size_t>(c)] = true;
+        violated = true;
+      }
+    }
+    if (!violated) break;
+  }
+  return x;
+}
+
+namespace {
+
+// Outputs stacked (output after output), each divided by ||y_j - mean y_j||: the calibration's cost.
+Eigen::VectorXd weighted(const Eigen::MatrixXd& M, const Eigen::VectorXd& w) {
+  const Eigen::Index N = M.rows();
+  Eigen::VectorXd v(M.size());
+  for (Eigen::Index j = 0; j < M.cols(); ++j) v.segment(j * N, N) = M.col(j) * w[j];
+  return v;
+}
+
+struct Around {  // the current model, around which every hypothesis is linearised
+  Eigen::MatrixXd Y, y0;
+  Eigen::VectorXd w;
+  std::vector<std::string> free_names;
+  Eigen::MatrixXd J;  // weighted sensitivities to the current free parameters
+};
+
+// Sensitivity of the (weighted) outputs to parameter i at p, forward difference; the step is
+// enlarged when it moves the outputs by less than round-off. Empty when it cannot be simulated.
+Eigen::VectorXd sensitivity(const Simulator& s, const Eigen::VectorXd& p, int i, double step, const Eigen::MatrixXd& y,
+                            const Eigen::VectorXd& w, int& sims) {
+  Eigen::MatrixXd y1;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    Eigen::VectorXd q = p;
+    q[i] += step;
+    ++sims;
+    if (!s.simulate_outputs(q, y1) || !y1.allFinite()) {
+      step = -step;
+      continue;
+    }
+    const Eigen::VectorXd d = weighted(y1 - y, w);
+    if (d.norm() > 1e-10 * std::max(1.0, weighted(y, w).norm()) || attempt == 1) return d / step;
+    step *= 1e3;
+  }
+  return Eigen::VectorXd();
+}
+
+ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Candidate& c, const ScreeningOptions& o,
+                              int& sims) {
+  ScreenedHypothesis h;
+  h.candidate = c;
+  h.new_parameters = static_cast<int>(c.parameters.size()) + (c.effect == "time_delay" ? 1 : 0);
+  h.cost = std::numeric_limits<double>::infinity();
+  Simulator s(c.model, data, {o.substeps});
+  const std::vector<std::string> names = s.parameter_names();
+  const std::vector<int> free = s.free_parameters();
+  auto index_of = [&](const std::string& n) {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return static_cast<int>(i);
+    return -1;
+  };
+  // Current free parameters still free in the candidate (a replaced one is not).
+  std::vector<int> cur_cols, cur_index;
+  for (std::size_t k = 0; k < a.free_names.size(); ++k) {
+    const int i = index_of(a.free_names[k]);
+    if (i >= 0 && std::find(free.begin(), free.end(), i) != free.end()) cur_cols.push_back(static_cast<int>(k)), cur_index.push_back(i);
+  }
+  std::vector<int> new_index;
+  for (const auto& n : c.parameters) new_index.push_back(index_of(n));
+  const Eigen::VectorXd base = s.parameter_values();
+  bool has_linear = false;
+  for (bool l : c.linear) has_linear = has_linear || l;
+  const std::vector<std::vector<double>> rows = c.grid.empty() ? std::vector<std::vector<double>>{{}} : c.grid;
+  struct Row {
+    double cost;
+    Eigen::VectorXd start, stepped;
+    Eigen::VectorXd d, x;
+    Eigen::MatrixXd A;
+  };
+  std::vector<Row> done;
+  const Eigen::VectorXd R = weighted(a.Y - a.y0, a.w);
+  for (const auto& g : rows) {
+    Eigen::VectorXd p = base;
+    std::size_t gi = 0;
+    for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+      if (c.linear[k]) p[new_index[k]] = 0.0;
+      else if (gi < g.size()) p[new_index[k]] = g[gi++];
+    }
+    Eigen::MatrixXd yg = a.y0;
+    if (!c.grid.empty() || !has_linear) {
+      ++sims;
+      if (!s.simulate_outputs(p, yg) || !yg.allFinite()) continue;
+    }
+    const Eigen::VectorXd d = weighted(yg - a.y0, a.w);
+    const auto q = static_cast<Eigen::Index>(cur_cols.size() + c.parameters.size());
+    Eigen::MatrixXd A(R.size(), q);
+    Eigen::VectorXd lo = Eigen::VectorXd::Constant(q, -1e300), hi = Eigen::VectorXd::Constant(q, 1e300);
+    for (std::size_t k = 0; k < cur_cols.size(); ++k) A.col(static_cast<Eigen::Index>(k)) = a.J.col(cur_cols[k]);
+    bool usable = true;
+    for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+      const auto col = static_cast<Eigen::Index>(cur_cols.size() + k);
+      const double scale = c.scales[k] > 0 ? c.scales[k] : 1.0;
+      const double step = c.linear[k] ? 1e-3 * scale : 1e-2 * std::max(std::abs(p[new_index[k]]), 1e-3 * scale);
+      const Eigen::VectorXd sk = sensitivity(s, p, new_index[k], step, yg, a.w, sims);
+      if (sk.size() == 0) {
+        usable = false;
+        break;
+      }
+      A.col(col) = sk;
+      const auto& mp = c.model.parameters[static_cast<std::size_t>(new_index[k])];
+      lo[col] = mp.min - p[new_index[k]];
+      hi[col] = mp.max - p[new_index[k]];
+    }
+    if (!usable) continue;
+    const Eigen::VectorXd x = bounded_least_squares(A, R - d, lo, hi);
+    Row row{(R - d - A * x).squaredNorm(), p, p, d, x, A};
+    for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+      const double v = p[new_index[k]] + x[static_cast<Eigen::Index>(cur_cols.size() + k)];
+      if (c.linear[k]) row.start[new_index[k]] = v;  // the nonlinear ones stay on their grid point
+      row.stepped[new_index[k]] = v;
+    }
+    for (std::size_t k = 0; k < cur_cols.size(); ++k) {
+      const auto& mp = c.model.parameters[static_cast<std::size_t>(cur_index[k])];
+      row.stepped[cur_index[k]] = std::clamp(base[cur_index[k]] + x[static_cast<Eigen::Index>(k)], mp.min, mp.max);
+    }
+    done.push_back(std::move(row));
+  }
+  if (done.empty()) {
+    h.note = "could not be simulated";
+    return h;
+  }
+  std::sort(done.begin(), done.end(), [](const Row& x, const Row& y) { return x.cost < y.cost; });
+  h.cost = done.front().cost;
+  {
+    const Row& b = done.front();
+    const auto q0 = static_cast<Eigen::Index>(cur_cols.size()), qn = static_cast<Eigen::Index>(c.parameters.size());
+    h.columns = b.A.rightCols(qn);
+    h.shift = b.d;
+    h.lower.resize(qn);
+    h.upper.resize(qn);
+    for (Eigen::Index k = 0; k < qn; ++k) {
+      const auto& mp = c.model.parameters[static_cast<std::size_t>(new_index[static_cast<std::size_t>(k)])];
+      const double at = c.linear[static_cast<std::size_t>(k)] ? 0.0 : b.start[new_index[static_cast<std::size_t>(k)]];
+      h.lower[k] = mp.min - at;
+      h.upper[k] = mp.max - at;
+    }
+    (void)q0;
+  }
+  // Multi-start in the nonlinear parameters: the best three grid points, each with its
+  // least-squares linear coefficients and (for the best) the full least-squares step.
+  for (std::size_t r = 0; r < std::min<std::size_t>(3, done.size()); ++r) {
+    h.starts.push_back(done[r].start);
+    if (r == 0) h.starts.push_back(done[r].stepped);
+  }
+  for (std::size_t i = 0; i < h.candidate.model.parameters.size(); ++i) h.candidate.model.parameters[i].value = h.starts.front()[static_cast<Eigen::Index>(i)];
+  // Consistency with the noise bound: a common point of the linearised strips (decimated).
+  if (!o.noise_bound.empty()) {
+    const Row& b = done.front();
+    const Eigen::Index N = a.Y.rows(), ny = a.Y.cols(), stride = std::max<Eigen::Index>(1, N / 800);
+    const Eigen::Index m = (N + stride - 1) / stride;
+    Eigen::MatrixXd Phi(m * ny, b.A.cols());
+    Eigen::VectorXd yy(m * ny), dd(m * ny);
+    for (Eigen::Index j = 0; j < ny; ++j)
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const Eigen::Index t = j * N + i * stride;
+        // In units of the bound (the weights cancel): |r - d - A x| / (w delta) <= 1.
+        const double scale = a.w[j] * std::max(o.noise_bound[static_cast<std::size_t>(j)], 1e-300);
+        Phi.row(j * m + i) = b.A.row(t) / scale;
+        yy[j * m + i] = (R[t] - b.d[t]) / scale;
+        dd[j * m + i] = 1.0;
+      }
+    for (Eigen::Index col = 0; col < Phi.cols(); ++col) {
+      const double n = Phi.col(col).norm();
+      if (n > 0) Phi.col(col) /= n;
+    }
+    try {
+      h.consistent = find_conflict(FeasibleParameterSet::from_data(Phi, yy, dd)).samples.empty();
+    } catch (const std::exception&) {
+      h.consistent = false;
+    }
+  }
+  return h;
+}
+
+bool compatible(const Candidate& a, const Candidate& b) {
+  static const std::vector<std::string> sign_laws = {"coulomb_friction", "stribeck_friction", "asymmetric_friction",
+                                                     "viscous_friction", "quadratic_drag"};
+  static const std::vector<std::string> sensors = {"output_saturation", "hysteresis", "absolute_value_sensor"};
+  auto in = [](const std::vector<std::string>& v, const std::string& e) { return std::find(v.begin(), v.end(), e) != v.end(); };
+  if (a.effect == b.effect) return false;
+  if (in(sign_laws, a.effect) && in(sign_laws, b.effect) && a.equation == b.equation) return false;
+  if (in(sensors, a.effect) && in(sensors, b.effect) && a.equation == b.equation) return false;
+  return a.parts.empty() && b.parts.empty();
+}
+
+// Pairs of the best single hypotheses: the least squares with both sets of columns and both
+// shifts (first order: the effects add), then the combined model built on the first's.
+std::vector<ScreenedHypothesis> screen_pairs(const Around& a, const Eigen::VectorXd& R, const Recording& data,
+                                             const std::vector<ScreenedHypothesis>& singles, const ScreeningOptions& o,
+                                             int& sims) {
+  std::vector<const ScreenedHypothesis*> top;
+  for (const auto& h : singles) {
+    if (static_cast<int>(top.size()) >= o.pairs) break;
+    if (!std::isfinite(h.cost) || h.columns.rows() != R.size() || h.starts.empty()) continue;
+    bool seen = false;  // one delay per actuator
+    for (const auto* t : top) seen = seen || (t->candidate.effect == h.candidate.effect && t->candidate.equation == h.candidate.equation);
+    if (!seen) top.push_back(&h);
+  }
+  std::vector<ScreenedHypothesis> out;
+  const Eigen::Index q0 = a.J.cols();
+  for (std::size_t i = 0; i < top.size(); ++i)
+    for (std::size_t j = i + 1; j < top.size(); ++j) {
+      const ScreenedHypothesis &x = *top[i], &y = *top[j];
+      if (!compatible(x.candidate, y.candidate)) continue;
+      const Eigen::Index qx = x.columns.cols(), qy = y.columns.cols();
+      Eigen::MatrixXd A(R.size(), q0 + qx + qy);
+      A << a.J, x.columns, y.columns;
+      Eigen::VectorXd lo(A.cols()), hi(A.cols());
+      lo << Eigen::VectorXd::Constant(q0, -1e300), x.lower, y.lower;
+      hi << Eigen::VectorXd::Constant(q0, 1e300), x.upper, y.upper;
+      const Eigen::VectorXd b = R - x.shift - y.shift;
+      const double cost = (b - A * bounded_least_squares(A, b, lo, hi)).squaredNorm();
+      if (!(cost < std::min(x.cost, y.cost))) continue;
+      // The second effect on the first's model (its start values), found by effect and place.
+      try {
+        Simulator s(x.candidate.model, data, {o.substeps});
+        ++sims;
+        const auto sim = s.simulate(s.parameter_values());
+        const Candidate* second = nullptr;
+        const std::vector<Candidate> on_first = generate_candidates(x.candidate.model, sim, data);
+        for (const auto& c : on_first)
+          if (c.effect == y.candidate.effect && c.equation == y.candidate.equation &&
+              (c.effect != "time_delay" || c.delay_samples == y.candidate.delay_samples))
+            second = &c;
+        if (!second) continue;
+        ScreenedHypothesis p;
+        p.candidate = combine_candidates(x.candidate, *second);
+        // Start: the first's start, the second's new parameters from its own start (by role).
+        Simulator sc(p.candidate.model, data, {o.substeps});
+        Eigen::VectorXd start = sc.parameter_values();
+        for (std::size_t k = 0; k < second->parameters.size(); ++k)
+          for (std::size_t q = 0; q < y.candidate.parameters.size(); ++q)
+            if (y.candidate.roles[q] == second->roles[k])
+              for (std::size_t m = 0; m < p.candidate.model.parameters.size(); ++m) {
+                if (p.candidate.model.parameters[m].name != second->parameters[k]) continue;
+                for (std::size_t n = 0; n < y.candidate.model.parameters.size(); ++n)
+                  if (y.candidate.model.parameters[n].name == y.candidate.parameters[q])
+                    start[static_cast<Eigen::Index>(m)] = y.starts.front()[static_cast<Eigen::Index>(n)];
+              }
+        p.starts = {start};
+        for (std::size_t m = 0; m < p.candidate.model.parameters.size(); ++m) p.candidate.model.parameters[m].value = start[static_cast<Eigen::Index>(m)];
+        p.cost = cost;
+        p.new_parameters = x.new_parameters + y.new_parameters;
+        p.score = cost * std::pow(o.sparsity_tolerance, p.new_parameters);
+        p.note = "pair";
+        out.push_back(std::move(p));
+      } catch (const std::exception&) {
+      }
+    }
+  return out;
+}
+
+}  // namespace
+
+Screening screen_hypotheses(const ModelFile& current, const Recording& data, const std::vector<Candidate>& candidates,
+                            const ScreeningOptions& o) {
+  Screening out;
+  Simulator s(current, data, {o.substeps});
+  Around a;
+  a.Y = s.measured();
+  a.w.resize(a.Y.cols());
+  for (Eigen::Index j = 0; j < a.Y.cols(); ++j) {
+    const double den = (a.Y.col(j).array() - a.Y.col(j).mean()).matrix().norm();
+    a.w[j] = den > 0 ? 1 / den : 1.0;
+  }
+  const Eigen::VectorXd p0 = s.parameter_values();
+  if (!s.simulate_outputs(p0, a.y0)) return out;
+  ++out.simulations;
+  const std::vector<int> free = s.free_parameters();
+  const std::vector<std::string> names = s.parameter_names();
+  a.J.resize(a.Y.size(), static_cast<Eigen::Index>(free.size()));
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    a.free_names.push_back(names[static_cast<std::size_t>(free[k])]);
+    const double scale = std::abs(p0[free[k]]) > 0 ? std::abs(p0[free[k]]) : 1.0;
+    Eigen::VectorXd sk = sensitivity(s, p0, free[k], 1e-4 * scale, a.y0, a.w, out.simulations);
+    a.J.col(static_cast<Eigen::Index>(k)) = sk.size() ? sk : Eigen::VectorXd::Zero(a.Y.size());
+  }
+  const Eigen::VectorXd R = weighted(a.Y - a.y0, a.w);
+  {
+    const Eigen::VectorXd inf = Eigen::VectorXd::Constant(a.J.cols(), 1e300);
+    out.baseline = (R - a.J * bounded_least_squares(a.J, R, -inf, inf)).squaredNorm();
+  }
+  // Equation-error baselines, one per state equation (the current model's own least squares).
+  std::map<std::string, double> ee_base;
+  if (o.equation_error)
+    for (const auto& c : candidates)
+      if (current.derivative(c.equation) && !ee_base.count(c.equation)) {
+        const EquationErrorFit f = equation_error_fit(current, data, c.equation);
+        ee_base[c.equation] = f.built ? f.relative_residual : -1;
+      }
+  std::vector<ScreenedHypothesis> hs(candidates.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> sims{0};
+  auto worker = [&] {
+    int my = 0;
+    for (std::size_t i; (i = next++) < candidates.size();) {
+      try {
+        hs[i] = screen_one(a, data, candidates[i], o, my);
+      } catch (const std::exception& e) {
+        hs[i].candidate = candidates[i];
+        hs[i].cost = std::numeric_limits<double>::infinity();
+        hs[i].note = e.what();
+      }
+      const auto it = ee_base.find(candidates[i].equation);
+      if (it != ee_base.end() && it->second > 0 && candidates[i].effect != "time_delay") {
+        try {
+          const EquationErrorFit f = equation_error_fit(candidates[i].model, data, candidates[i].equation);
+          if (f.built) {
+            hs[i].ee_gain = 1 - (f.relative_residual * f.relative_residual) / (it->second * it->second);
+            // Its estimates as another start (the nonlinear parameters from the best grid point).
+            if (!hs[i].starts.empty()) {
+              Eigen::VectorXd st = hs[i].starts.front();
+              for (std::size_t k = 0; k < f.parameters.size(); ++k)
+                for (std::size_t q = 0; q < candidates[i].model.parameters.size(); ++q)
+                  if (candidates[i].model.parameters[q].name == f.parameters[k]) {
+                    const auto& mp = candidates[i].model.parameters[q];
+                    st[static_cast<Eigen::Index>(q)] = std::clamp(f.estimate[k], mp.min, mp.max);
+                  }
+              hs[i].starts.push_back(st);
+            }
+          }
+        } catch (const std::exception&) {
+        }
+      }
+    }
+    sims += my;
+  };
+  std::vector<std::thread> pool;
+  for (int k = 0; k < std::max(1, o.threads); ++k) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  out.simulations += sims;
+  for (auto& h : hs) {
+    h.gain = out.baseline > 0 ? 1 - h.cost / out.baseline : 0;
+    h.score = h.cost * std::pow(o.sparsity_tolerance, h.new_parameters);
+  }
+  std::sort(hs.begin(), hs.end(), [](const auto& x, const auto& y) { return x.score < y.score; });
+  if (o.pairs > 1) {
+    std::vector<ScreenedHypothesis> pairs = screen_pairs(a, R, data, hs, o, out.simulations);
+    for (auto& p : pairs) {
+      p.gain = out.baseline > 0 ? 1 - p.cost / out.baseline : 0;
+      hs.push_back(std::move(p));
+    }
+    std::sort(hs.begin(), hs.end(), [](const auto& x, const auto& y) { return x.score < y.score; });
+  }
+  out.ranked = std::move(hs);
+  return out;
+}
+
+}  // namespace sets

@@ -1,0 +1,229 @@
+#include "sets/examples/diagnosis_suite.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "sets/examples/random_plants.hpp"
+
+namespace sets {
+
+bool SuitePlantResult::first_right() const {
+  if (truth.empty()) return named.empty() && error.empty();
+  return !named.empty() && named.front() == truth.front().name;
+}
+
+bool SuitePlantResult::all_named() const {
+  for (const auto& t : truth)
+    if (std::find(named.begin(), named.end(), t.name) == named.end()) return false;
+  return error.empty();
+}
+
+SuitePlantResult run_suite_plant(const SyntheticPlant& p, const DiagnosisOptions& options) {
+  SuitePlantResult r;
+  r.name = p.name;
+  r.family = p.family;
+  r.description = p.description;
+  r.truth = p.effects;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, options);
+    for (const auto& e : d.effects) r.named.push_back(e.name), r.places.push_back(e.equation);
+    r.answer = d.nothing_missing ? "nothing_missing" : d.unexplained ? "unexplained" : "missing";
+    r.fit_nominal = d.fit_nominal_validation.empty() ? 0 : d.fit_nominal_validation.front();
+    r.fit_augmented = d.fit_augmented_validation.empty() ? 0 : d.fit_augmented_validation.front();
+    for (std::size_t j = 0; j < d.noise_sigma.size() && j < p.noise_sigma.size(); ++j)
+      r.noise_ratio.push_back(p.noise_sigma[j] > 0 ? d.noise_sigma[j] / p.noise_sigma[j] : 0.0);
+    // Coverage: true values that map cleanly, for effects named at the place they are.
+    for (const auto& t : p.effects)
+      for (const auto& e : d.effects) {
+        if (e.name != t.name || e.equation != t.where) continue;
+        for (const auto& [role, value] : t.values)
+          for (const auto& ep : e.parameters)
+            if (ep.role == role) r.coverage.push_back({t.name, role, value, ep.lo, ep.hi, ep.estimate, ep.lo <= value && value <= ep.hi});
+      }
+  } catch (const std::exception& e) {
+    r.error = e.what();
+    r.answer = "error";
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+namespace {
+
+std::vector<SuitePlantResult> run_all(int count, const std::function<SyntheticPlant(int)>& plant, const SuiteOptions& o) {
+  std::vector<SuitePlantResult> out(static_cast<std::size_t>(count));
+  std::atomic<int> next{0}, done{0};
+  std::mutex mu;
+  auto worker = [&] {
+    for (int i; (i = next++) < count;) {
+      DiagnosisOptions d = o.diagnosis;
+      d.threads = 1;
+      d.progress = nullptr;
+      SuitePlantResult r;
+      try {
+        r = run_suite_plant(plant(i), d);
+      } catch (const std::exception& e) {  // the plant itself could not be generated
+        r.name = "plant " + std::to_string(i);
+        r.error = e.what();
+        r.answer = "error";
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      out[static_cast<std::size_t>(i)] = r;
+      ++done;
+      if (o.on_plant) o.on_plant(out[static_cast<std::size_t>(i)], done, count);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int k = 0; k < std::max(1, o.threads); ++k) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  return out;
+}
+
+std::string pct(int a, int b) {
+  std::ostringstream o;
+  o << a << " of " << b;
+  if (b > 0) o << " (" << std::fixed << std::setprecision(1) << 100.0 * a / b << " %)";
+  return o.str();
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+std::vector<SuitePlantResult> run_random_suite(unsigned first_seed, int count, const SuiteOptions& o) {
+  return run_all(count, [&](int i) { return random_plant(first_seed + static_cast<unsigned>(i)); }, o);
+}
+
+std::vector<SuitePlantResult> run_fixed_suite(const std::string& only, const SuiteOptions& o) {
+  std::vector<std::string> names;
+  for (const auto& n : synthetic_plant_names())
+    if (only.empty() || n == only) names.push_back(n);
+  return run_all(static_cast<int>(names.size()), [&](int i) { return synthetic_plant(names[static_cast<std::size_t>(i)]); }, o);
+}
+
+std::string suite_report(const std::vector<SuitePlantResult>& results, bool table) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(1);
+  if (table) {
+    o << "| plant | family | true effects (where, strength) | named (where) | answer | first right | all named | fit val: nominal -> augmented | "
+         "noise est/true | true values inside | s |\n"
+         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    for (const auto& r : results) {
+      std::string truth, named;
+      for (const auto& t : r.truth) {
+        std::ostringstream x;
+        x << t.name << " (" << t.where << ", " << std::round(100 * t.strength) << " %";
+        if (t.detectability > 0) x << ", " << std::setprecision(2) << t.detectability << " sigma" << std::setprecision(1);
+        x << ")";
+        truth += (truth.empty() ? "" : ", ") + x.str();
+      }
+      for (std::size_t k = 0; k < r.named.size(); ++k) named += (k ? ", " : "") + r.named[k] + " (" + r.places[k] + ")";
+      o << "| " << r.name << " | " << r.family << " | " << (truth.empty() ? "none" : truth) << " | " << (named.empty() ? "none" : named)
+        << " | " << (r.error.empty() ? r.answer : "error: " + r.error) << " | " << (r.first_right() ? "yes" : "**no**") << " | "
+        << (r.all_named() ? "yes" : "**no**") << " | " << r.fit_nominal << " -> " << r.fit_augmented << " | ";
+      for (std::size_t j = 0; j < r.noise_ratio.size(); ++j) o << (j ? ", " : "") << std::setprecision(2) << r.noise_ratio[j];
+      int inside = 0;
+      for (const auto& c : r.coverage) inside += c.inside;
+      o << std::setprecision(1) << " | " << inside << " of " << r.coverage.size() << " | " << r.seconds << " |\n";
+    }
+    o << "\n";
+  }
+  int one = 0, one_right = 0, two = 0, two_both = 0, two_one = 0, clean = 0, clean_invented = 0, clean_nothing = 0, errors = 0;
+  int cov = 0, cov_in = 0, right_place = 0, named_true = 0;
+  double seconds = 0;
+  std::vector<double> ratios;
+  std::map<std::string, std::map<std::string, int>> confusion;
+  std::map<std::string, int> tp, fp, fn;
+  std::set<std::string> labels{"none"};
+  for (const auto& r : results) {
+    seconds += r.seconds;
+    if (!r.error.empty()) ++errors;
+    for (double x : r.noise_ratio) ratios.push_back(x);
+    std::vector<std::string> truth;
+    for (const auto& t : r.truth) truth.push_back(t.name);
+    if (truth.empty()) {
+      ++clean;
+      clean_invented += !r.named.empty();
+      clean_nothing += r.answer == "nothing_missing";
+    } else if (truth.size() == 1) {
+      ++one;
+      one_right += r.first_right();
+    } else {
+      ++two;
+      two_both += r.all_named();
+      int n = 0;
+      for (const auto& t : truth) n += std::find(r.named.begin(), r.named.end(), t) != r.named.end();
+      two_one += n >= 1;
+    }
+    if (truth.size() <= 1) {
+      const std::string row = truth.empty() ? "none" : truth.front(), col = r.named.empty() ? "none" : r.named.front();
+      ++confusion[row][col];
+      labels.insert(row);
+      labels.insert(col);
+    }
+    for (const auto& t : truth) (std::find(r.named.begin(), r.named.end(), t) != r.named.end() ? tp : fn)[t]++;
+    for (const auto& n : r.named)
+      if (std::find(truth.begin(), truth.end(), n) == truth.end()) fp[n]++;
+    for (std::size_t k = 0; k < r.named.size(); ++k)
+      for (const auto& t : r.truth)
+        if (t.name == r.named[k]) ++named_true, right_place += t.where == r.places[k];
+    for (const auto& c : r.coverage) ++cov, cov_in += c.inside;
+  }
+  o << "Plants: " << results.size() << " (" << one << " with one effect, " << two << " with two, " << clean << " clean; " << errors
+    << " failed); " << seconds << " s of diagnosis in all (" << (results.empty() ? 0.0 : seconds / static_cast<double>(results.size()))
+    << " s per plant).\n\n";
+  o << "- one-effect plants, first named right: " << pct(one_right, one) << "\n";
+  o << "- two-effect plants, both named: " << pct(two_both, two) << " (at least one: " << pct(two_one, two) << ")\n";
+  o << "- clean plants with an invented effect: " << pct(clean_invented, clean) << " (answered \"no physics is missing\": "
+    << pct(clean_nothing, clean) << ")\n";
+  o << "- true effects named at the true place: " << pct(right_place, named_true) << "\n";
+  o << "- true parameter values (that map cleanly) inside the reported bounded-error interval: " << pct(cov_in, cov) << "\n";
+  if (!ratios.empty()) {
+    std::sort(ratios.begin(), ratios.end());
+    auto q = [&](double f) { return ratios[static_cast<std::size_t>(f * static_cast<double>(ratios.size() - 1))]; };
+    int within = 0;
+    for (double x : ratios) within += x >= 0.5 && x <= 2;
+    o << std::setprecision(2) << "- estimated / true noise level (" << ratios.size() << " outputs): median " << q(0.5)
+      << ", 10 % " << q(0.1) << ", 90 % " << q(0.9) << ", lowest " << ratios.front() << ", highest " << ratios.back()
+      << "; within a factor 2: " << pct(within, static_cast<int>(ratios.size())) << "\n" << std::setprecision(1);
+  }
+  o << "\nConfusion matrix (one-effect and clean plants; rows: true effect, columns: first named):\n\n| true \\ named |";
+  for (const auto& l : labels) o << " " << l << " |";
+  o << "\n| --- |";
+  for (std::size_t i = 0; i < labels.size(); ++i) o << " --- |";
+  o << "\n";
+  for (const auto& row : labels) {
+    if (!confusion.count(row)) continue;
+    o << "| " << row << " |";
+    for (const auto& col : labels) {
+      const int n = confusion[row].count(col) ? confusion[row][col] : 0;
+      o << " " << (n ? std::to_string(n) : "") << " |";
+    }
+    o << "\n";
+  }
+  o << "\nPer effect (all plants; a named effect counts wherever it is named):\n\n| effect | true | named right | precision | recall |\n| --- | --- | --- | --- | --- |\n";
+  std::set<std::string> effects;
+  for (const auto& [e, n] : tp) effects.insert(e);
+  for (const auto& [e, n] : fn) effects.insert(e);
+  for (const auto& [e, n] : fp) effects.insert(e);
+  for (const auto& e : effects) {
+    const int t = tp.count(e) ? tp[e] : 0, f = fp.count(e) ? fp[e] : 0, m = fn.count(e) ? fn[e] : 0;
+    o << "| " << e << " | " << t + m << " | " << t << " | " << (t + f ? pct(t, t + f) : "–") << " | " << (t + m ? pct(t, t + m) : "–") << " |\n";
+  }
+  return o.str();
+}
+
+}  // namespace sets

@@ -1,0 +1,107 @@
+// The documented acceptance rules (docs/methods/diagnosis.md, step 3): each one can fail on its
+// own, and a diagnosis never names an effect whose rules did not all pass.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sets/diagnosis/acceptance.hpp"
+#include "sets/diagnosis/diagnosis.hpp"
+#include "sets/examples/synthetic_plants.hpp"
+
+using namespace sets;
+
+namespace {
+
+// A hypothesis that passes everything by a margin.
+HypothesisEvidence good() {
+  HypothesisEvidence e;
+  e.cost_null = 1.0;
+  e.cost = 0.5;             // 50 % removed on estimation
+  e.cost_neutral = 1.0;     // switching it off costs 50 %
+  e.cost_null_validation = 1.0;
+  e.cost_validation = 0.6;  // 40 % removed on validation
+  e.noise_cost = 0.01;      // 50x the noise's misfit removed
+  return e;
+}
+
+const RuleCheck& rule(const std::vector<RuleCheck>& checks, const std::string& name) {
+  for (const auto& c : checks)
+    if (c.name == name) return c;
+  throw std::runtime_error("no rule " + name);
+}
+
+// Exactly the named rule fails.
+void only_fails(const HypothesisEvidence& e, const std::string& name) {
+  const auto checks = check_rules(e);
+  EXPECT_FALSE(passes(checks)) << name;
+  for (const auto& c : checks) EXPECT_EQ(c.passed, c.name != name) << c.name << " value " << c.value;
+}
+
+}  // namespace
+
+TEST(Acceptance, AGoodHypothesisPassesEveryRule) {
+  const auto checks = check_rules(good());
+  ASSERT_EQ(checks.size(), 4u);
+  EXPECT_TRUE(passes(checks));
+  EXPECT_NEAR(rule(checks, "estimation_gain").value, 0.5, 1e-12);
+  EXPECT_NEAR(rule(checks, "validation_gain").value, 0.4, 1e-12);
+  EXPECT_NEAR(rule(checks, "own_term").value, 0.5, 1e-12);
+  EXPECT_NEAR(rule(checks, "beyond_noise").value, 50, 1e-9);
+}
+
+TEST(Acceptance, EstimationGainBelowTenPercentFails) {
+  HypothesisEvidence e = good();
+  e.cost = 0.91;  // 9 % removed
+  e.cost_neutral = 1.2;
+  only_fails(e, "estimation_gain");
+}
+
+TEST(Acceptance, GainWithinTheNoiseFails) {
+  HypothesisEvidence e = good();
+  e.noise_cost = 0.6;  // the 0.5 removed is less than the noise's own misfit
+  only_fails(e, "beyond_noise");
+}
+
+TEST(Acceptance, EffectWhoseOwnTermDoesNothingFails) {
+  HypothesisEvidence e = good();
+  e.cost_neutral = 0.52;  // switching it off costs only 4 %: a better optimum of the old parameters
+  only_fails(e, "own_term");
+}
+
+TEST(Acceptance, HalfAPercentOnValidationFails) {
+  // The case of issue 14: an effect that removed 0.5 % of the validation misfit was accepted.
+  HypothesisEvidence e = good();
+  e.cost_validation = 0.995;
+  only_fails(e, "validation_gain");
+  e.cost_validation = 0.949;  // 5.1 %
+  EXPECT_TRUE(passes(check_rules(e)));
+}
+
+TEST(Acceptance, RulesWithoutTheirDataDoNotApply) {
+  HypothesisEvidence e = good();
+  e.cost_validation = e.cost_null_validation = std::nan("");
+  e.cost_neutral = std::nan("");
+  const auto checks = check_rules(e);
+  EXPECT_FALSE(rule(checks, "validation_gain").applies);
+  EXPECT_FALSE(rule(checks, "own_term").applies);
+  EXPECT_TRUE(passes(checks));
+  AcceptanceRules strict;
+  strict.min_gain = 0.6;
+  EXPECT_FALSE(passes(check_rules(e, strict)));
+}
+
+// Every effect a diagnosis names carries its rule checks, all passed, and its reported reductions
+// are the rules' values (the validation one >= 5 %).
+TEST(Acceptance, NamedEffectsPassedEveryRuleTheyReport) {
+  const SyntheticPlant p = synthetic_plant("constant_offset");
+  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation);
+  ASSERT_FALSE(d.effects.empty());
+  for (const auto& e : d.effects) {
+    ASSERT_EQ(e.rules.size(), 4u) << e.name;
+    EXPECT_TRUE(passes(e.rules)) << e.name;
+    EXPECT_DOUBLE_EQ(e.cost_reduction_estimation, rule(e.rules, "estimation_gain").value);
+    EXPECT_DOUBLE_EQ(e.cost_reduction_validation, rule(e.rules, "validation_gain").value);
+    EXPECT_GE(e.cost_reduction_validation, 0.05);
+  }
+}

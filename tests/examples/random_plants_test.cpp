@@ -1,0 +1,72 @@
+// The randomised plant generator: deterministic per seed, magnitudes and sample times over
+// decades, random names, effects of the strength asked for, clean plants without effects.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "sets/data/simulation.hpp"
+#include "sets/core/error.hpp"
+#include "sets/examples/random_plants.hpp"
+
+using namespace sets;
+
+TEST(RandomPlants, SameSeedSamePlant) {
+  const SyntheticPlant a = random_plant(17), b = random_plant(17);
+  EXPECT_EQ(to_json_text(a.nominal), to_json_text(b.nominal));
+  EXPECT_EQ(to_json_text(a.truth), to_json_text(b.truth));
+  EXPECT_EQ(a.estimation.columns, b.estimation.columns);
+  EXPECT_NE(to_json_text(random_plant(18).truth), to_json_text(a.truth));
+}
+
+TEST(RandomPlants, SpanDecadesFamiliesNamesAndEffects) {
+  std::set<std::string> families, effects, first_params;
+  double ts_lo = 1e300, ts_hi = 0, y_lo = 1e300, y_hi = 0;
+  int clean = 0;
+  RandomPlantOptions o;
+  o.samples = 1000;  // what is drawn does not depend on the length; generating 5000 samples took a minute
+  for (unsigned seed = 501; seed < 561; ++seed) {
+    const SyntheticPlant p = random_plant(seed, o);
+    families.insert(p.family);
+    for (const auto& e : p.effects) {
+      effects.insert(e.name);
+      EXPECT_GT(e.strength, 0.02) << seed << " " << e.name;
+      EXPECT_LT(e.strength, 1.6) << seed << " " << e.name;
+    }
+    clean += p.effects.empty();
+    first_params.insert(p.nominal.parameters.front().name);
+    const auto& t = p.estimation.column(p.nominal.time_column);
+    const double Ts = t[1] - t[0];
+    ts_lo = std::min(ts_lo, Ts), ts_hi = std::max(ts_hi, Ts);
+    const auto& y = p.estimation.column(p.nominal.outputs.front().second);
+    const double spread = *std::max_element(y.begin(), y.end()) - *std::min_element(y.begin(), y.end());
+    y_lo = std::min(y_lo, spread), y_hi = std::max(y_hi, spread);
+    // The nominal leaves the effects out: it has no more states than the truth and simulates.
+    EXPECT_LE(p.nominal.states.size(), p.truth.states.size());
+    Simulator s(p.nominal, p.estimation, {10});
+    EXPECT_NO_THROW(s.simulate(s.parameter_values())) << seed;
+  }
+  EXPECT_EQ(families.size(), random_plant_families().size());
+  EXPECT_GE(effects.size(), 12u);
+  EXPECT_GT(clean, 5);
+  EXPECT_GT(first_params.size(), 20u);  // names are drawn, not fixed
+  EXPECT_GT(ts_hi / ts_lo, 1e4);        // sample times over four decades
+  EXPECT_GT(y_hi / y_lo, 1e4);          // output magnitudes over four decades
+}
+
+TEST(RandomPlants, ForcedEffectIsInTheTruthAndNotInTheNominal) {
+  RandomPlantOptions o;
+  o.effect = "bouc_wen_hysteresis";
+  o.effects = 1;
+  o.family = "one_mass";
+  const SyntheticPlant p = random_plant(3, o);
+  ASSERT_EQ(p.effects.size(), 1u);
+  EXPECT_EQ(p.effects.front().name, "bouc_wen_hysteresis");
+  EXPECT_EQ(p.truth.states.size(), 3u);
+  EXPECT_EQ(p.nominal.states.size(), 2u);
+  ASSERT_EQ(p.effects.front().values.size(), 1u);
+  EXPECT_EQ(p.effects.front().values.front().first, "alpha");
+  EXPECT_THROW(random_plant(3, RandomPlantOptions{1, "thermal", "bouc_wen_hysteresis", 0}), InputError);
+}
