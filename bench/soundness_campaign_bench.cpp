@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   for (const auto& o : out) {
     tally[static_cast<std::size_t>(o.kind)].add(o);
     tally.back().add(o);
-    if (list && (o.false_empty() || o.guaranteed_miss() || o.numerical_error || o.verdict != sets::Falsified::no))
+    if (list && (o.false_empty() || !o.theta_in_box || o.numerical_error || o.verdict != sets::Falsified::no))
       std::cout << "seed " << o.seed << " (" << sets::to_string(o.kind) << ", p = " << o.parameters
                 << ", N = " << o.samples << "): verdict " << sets::to_string(o.verdict)
                 << (o.guaranteed ? ", guaranteed" : ", not guaranteed") << (o.theta_in_box ? "" : ", theta outside")
