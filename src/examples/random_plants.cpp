@@ -499,7 +499,9 @@ Effect make_effect(Rng& r, const Build& b, const std::string& name, const Scales
     return E;
   }
   if (name == "cubic_stiffness" || name == "bouc_wen_hysteresis") {
-    const auto [q, eq] = r.pick(b.springs);
+    // Named copies, not a structured binding: clang 14 (the sanitizer and fuzz builds) cannot capture one.
+    const auto& spring = r.pick(b.springs);
+    const std::string q = spring.first, eq = spring.second;
     E.where = eq;
     const double F = force_scale(eq), qr = std::max(sc.rms.at(q), 1e-300), qrange = std::max(sc.range.at(q), 1e-300);
     if (name == "cubic_stiffness") {
@@ -611,7 +613,8 @@ Effect make_effect(Rng& r, const Build& b, const std::string& name, const Scales
     return E;
   }
   if (name == "sqrt_outflow" || name == "state_saturation") {
-    const auto [h, a] = r.pick(b.levels);
+    const auto& level = r.pick(b.levels);  // named copies: see cubic_stiffness
+    const std::string h = level.first, a = level.second;
     E.where = h;
     const double hm = std::max(sc.mean.at(h), 1e-300), hmax = sc.max.at(h), hrange = sc.range.at(h);
     if (name == "sqrt_outflow") {
