@@ -12,6 +12,7 @@
 #include "sets/data/simulation.hpp"
 #include "sets/diagnosis/equation_error.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
+#include "sets/numeric/glpk_environment.hpp"
 
 namespace sets {
 
@@ -346,6 +347,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
   std::atomic<std::size_t> next{0};
   std::atomic<int> sims{0};
   auto worker = [&] {
+    const GlpkThreadEnvironment glpk;  // freed when the worker ends (GLPK keeps one environment per thread)
     int my = 0;
     for (std::size_t i; (i = next++) < candidates.size();) {
       try {

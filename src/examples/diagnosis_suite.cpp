@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "sets/examples/random_plants.hpp"
+#include "sets/numeric/glpk_environment.hpp"
 
 namespace sets {
 
@@ -64,6 +65,7 @@ std::vector<SuitePlantResult> run_all(int count, const std::function<SyntheticPl
   std::atomic<int> next{0}, done{0};
   std::mutex mu;
   auto worker = [&] {
+    const GlpkThreadEnvironment glpk;  // freed when the worker ends (GLPK keeps one environment per thread)
     for (int i; (i = next++) < count;) {
       DiagnosisOptions d = o.diagnosis;
       d.threads = 1;
