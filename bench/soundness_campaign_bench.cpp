@@ -17,11 +17,10 @@
 #include <cstring>
 #include <iostream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "sets/examples/bounded_error_regression.hpp"
-#include "sets/numeric/glpk_environment.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace {
 
@@ -89,17 +88,13 @@ int main(int argc, char** argv) {
   std::vector<sets::SoundnessOutcome> out(last - first + 1);
   std::atomic<unsigned long> next{first};
   std::atomic<unsigned long> done{0};
-  const auto work = [&] {
-    const sets::GlpkThreadEnvironment glpk;
+  sets::run_worker_threads(static_cast<int>(threads), [&] {
     for (unsigned long seed; (seed = next++) <= last;) {
       out[seed - first] = sets::run_soundness_problem(sets::bounded_error_regression(seed));
       const unsigned long k = ++done;
       if (k % 1000 == 0) std::cerr << "  " << k << " / " << out.size() << " problems\n";
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned long t = 0; t < threads; ++t) pool.emplace_back(work);
-  for (auto& t : pool) t.join();
+  });
 
   std::array<Tally, sets::regression_kind_count + 1> tally;
   for (const auto& o : out) {

@@ -8,10 +8,9 @@
 #include <exception>
 #include <functional>
 #include <optional>
-#include <thread>
 #include <vector>
 
-#include "sets/numeric/glpk_environment.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets::app {
 
@@ -27,8 +26,7 @@ inline std::optional<RunFailure> run_parallel(std::size_t count, unsigned thread
   std::atomic<std::size_t> next{0};
   std::vector<std::exception_ptr> errors(count);
   std::atomic<bool> failed{false};
-  auto worker = [&] {
-    const GlpkThreadEnvironment glpk;  // freed when the worker ends
+  run_worker_threads(static_cast<int>(std::max(1u, threads)), [&] {
     for (std::size_t k; !failed && (k = next++) < count;) {
       try {
         run(k);
@@ -37,10 +35,7 @@ inline std::optional<RunFailure> run_parallel(std::size_t count, unsigned thread
         failed = true;
       }
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned i = 0; i < std::max(1u, threads); ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  });
   for (std::size_t k = 0; k < count; ++k)
     if (errors[k]) return RunFailure{k, errors[k]};
   return std::nullopt;

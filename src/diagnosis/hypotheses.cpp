@@ -11,12 +11,11 @@
 #include <map>
 #include <mutex>
 #include <set>
-#include <thread>
 
 #include "diagnosis/stages.hpp"
 #include "sets/core/error.hpp"
 #include "sets/diagnosis/screening.hpp"
-#include "sets/numeric/glpk_environment.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -123,13 +122,9 @@ Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::V
 template <class Job>
 void parallel(int threads, std::size_t jobs, Job job) {
   std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    const GlpkThreadEnvironment glpk;  // freed when the worker ends
+  run_worker_threads(threads, [&] {
     for (std::size_t i; (i = next++) < jobs;) job(i);
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, threads); ++k) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
+  });
 }
 
 // The delay grid is coarse: every whole number of samples between the screened one's neighbours

@@ -7,12 +7,11 @@
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <thread>
 
 #include "sets/data/simulation.hpp"
 #include "sets/diagnosis/equation_error.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
-#include "sets/numeric/glpk_environment.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets {
 
@@ -346,8 +345,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
   std::vector<ScreenedHypothesis> hs(candidates.size());
   std::atomic<std::size_t> next{0};
   std::atomic<int> sims{0};
-  auto worker = [&] {
-    const GlpkThreadEnvironment glpk;  // freed when the worker ends (GLPK keeps one environment per thread)
+  run_worker_threads(o.threads, [&] {
     int my = 0;
     for (std::size_t i; (i = next++) < candidates.size();) {
       try {
@@ -380,10 +378,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
       }
     }
     sims += my;
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, o.threads); ++k) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  });
   out.simulations += sims;
   for (auto& h : hs) {
     h.gain = out.baseline > 0 ? 1 - h.cost / out.baseline : 0;

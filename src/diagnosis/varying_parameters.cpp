@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "diagnosis/stages.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
 #include "sets/methods/tv_bound/window_norm.hpp"
-#include "sets/numeric/glpk_environment.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -64,8 +63,7 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
   }
   std::atomic<int> next{0};
   std::atomic<bool> failed{false};
-  auto worker = [&] {
-    const GlpkThreadEnvironment glpk;  // freed when the worker ends
+  run_worker_threads(threads, [&] {
     Simulator sim(model, est, {substeps});
     Eigen::MatrixXd sched(N, p.size()), y1;
     for (int job; (job = next++) < q * S;) {
@@ -86,12 +84,7 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
             xi[static_cast<std::size_t>(i)]((k + 1) * l + o * m + j, s) =
                 mean_over(y1, o, k, j) / h * scale[static_cast<std::size_t>(i)] / sigma[o];
     }
-  };
-  {
-    std::vector<std::thread> pool;
-    for (int k = 0; k < std::max(1, threads); ++k) pool.emplace_back(worker);
-    for (auto& th : pool) th.join();
-  }
+  });
   if (failed) return out;
 
   const Eigen::VectorXd offset = stack_samples(Y);

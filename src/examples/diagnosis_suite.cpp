@@ -9,10 +9,9 @@
 #include <mutex>
 #include <set>
 #include <sstream>
-#include <thread>
 
 #include "sets/examples/random_plants.hpp"
-#include "sets/numeric/glpk_environment.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets {
 
@@ -83,10 +82,7 @@ std::vector<SuitePlantResult> run_all(int count, const std::function<SyntheticPl
       ++done;
       if (o.on_plant) o.on_plant(out[static_cast<std::size_t>(i)], done, count);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, o.threads); ++k) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  });
   return out;
 }
 
