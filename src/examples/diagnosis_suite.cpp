@@ -63,8 +63,7 @@ std::vector<SuitePlantResult> run_all(int count, const std::function<SyntheticPl
   std::vector<SuitePlantResult> out(static_cast<std::size_t>(count));
   std::atomic<int> next{0}, done{0};
   std::mutex mu;
-  auto worker = [&] {
-    const GlpkThreadEnvironment glpk;  // freed when the worker ends (GLPK keeps one environment per thread)
+  run_worker_threads(o.threads, [&] {
     for (int i; (i = next++) < count;) {
       DiagnosisOptions d = o.diagnosis;
       d.threads = 1;
@@ -91,12 +90,6 @@ std::string pct(int a, int b) {
   o << a << " of " << b;
   if (b > 0) o << " (" << std::fixed << std::setprecision(1) << 100.0 * a / b << " %)";
   return o.str();
-}
-
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s.empty() ? "none" : s;
 }
 
 }  // namespace

@@ -121,7 +121,7 @@ struct LinearProgram::Impl {
       call_glpk("LinearProgram", [p, count] { glp_add_cols(p, count); });
       for (int j = 0; j < n(); ++j) load_col(j);
     }
-    for (int i = 0; i < m(); ++i) load_row(i, false);
+    for (int i = 0; i < m(); ++i) load_row(i);
     return lp;
   }
 
@@ -138,8 +138,8 @@ struct LinearProgram::Impl {
     });
   }
 
-  // Row i of the stored data into GLPK (appended when `append`, else into the existing row i).
-  void load_row(int i, bool append) {
+  // Row i of the stored data appended to GLPK's problem (which holds rows 0 .. i-1).
+  void load_row(int i) {
     const auto& entries = rows.entries[static_cast<std::size_t>(i)];
     std::vector<int> ind(1);
     std::vector<double> val(1);
@@ -172,7 +172,7 @@ struct LinearProgram::Impl {
     rows.lo.push_back(lo);
     rows.hi.push_back(hi);
     try {
-      load_row(m() - 1, true);
+      load_row(m() - 1);
     } catch (...) {
       rows.entries.pop_back();
       rows.lo.pop_back();
