@@ -70,6 +70,19 @@ sets::TvBoundData small_data(const Eigen::MatrixXd& pi, double noise_norm, unsig
   return {sets::biaffine_regression(m, x0, u), sets::simulate(m, x0, u, pi).y + eta, {w}};
 }
 
+// The sparse-bound options the MILP tests share: mu = 1e-3 on each of the three parameters,
+// |pi| <= max_abs, the window-norm bound epsilon (from linf_bound). The node limit decides where a
+// search stops, so results do not depend on load; the 600 s time limit only guards against a hang.
+sets::SparseBoundOptions milp_options(const Eigen::VectorXd& epsilon, long node_limit, double max_abs = 1.0) {
+  sets::SparseBoundOptions o;
+  o.mu = Eigen::Vector3d::Constant(1e-3);
+  o.max_abs = Eigen::Vector3d::Constant(max_abs);
+  o.epsilon = epsilon;
+  o.milp.time_limit_s = 600;
+  o.milp.node_limit = node_limit;
+  return o;
+}
+
 }  // namespace
 
 TEST(TvBound, WindowNormOfKnownSignals) {
@@ -282,12 +295,7 @@ TEST(TvBound, SparseBoundPlacesASingleStep) {
     pi.block(at, param, N - at, 1).setConstant(1.0);
     const auto data = small_data(pi, 0.01, 100 + run, 8, 10);
     const auto lin = sets::linf_bound(data);
-    sets::SparseBoundOptions o;
-    o.mu = Eigen::Vector3d::Constant(1e-3);
-    o.max_abs = Eigen::Vector3d::Constant(2.0);
-    o.epsilon = lin.epsilon;
-    o.milp.time_limit_s = 600;
-    o.milp.node_limit = 20000;
+    auto o = milp_options(lin.epsilon, 20000, 2.0);
     o.start = lin.pi;
     const auto r = sets::sparse_bound(data, o);
     int best_k = -1;
@@ -314,12 +322,7 @@ TEST(TvBound, PaperAndSingleBinaryFormulationsAgree) {
   pi.block(10, 1, N - 10, 1).setConstant(-0.3);
   const auto data = small_data(pi, 0.01, 5, 4);
   const auto lin = sets::linf_bound(data);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(1.0);
-  o.epsilon = lin.epsilon;
-  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides, independent of load
-  o.milp.node_limit = 50000;
+  auto o = milp_options(lin.epsilon, 50000);
   o.solver = sets::SparseSolver::glpk_big_m;
   const auto single = sets::sparse_bound(data, o);
   o.formulation = sets::SparseFormulation::paper;
@@ -344,12 +347,7 @@ TEST(TvBound, JumpSearchAndGlpkMilpFindTheSameOptimum) {
     pi.block(b, 2, N - b, 1).setConstant(-0.4);
     const auto data = small_data(pi, 0.01, 300 + run, 4);
     const auto lin = sets::linf_bound(data);
-    sets::SparseBoundOptions o;
-    o.mu = Eigen::Vector3d::Constant(1e-3);
-    o.max_abs = Eigen::Vector3d::Constant(1.0);
-    o.epsilon = lin.epsilon;
-    o.milp.time_limit_s = 600;  // hang guards; the node limits decide
-    o.milp.node_limit = 50000;
+    auto o = milp_options(lin.epsilon, 50000);
     o.start = lin.pi;
     const auto jump = sets::sparse_bound(data, o);
     o.solver = sets::SparseSolver::glpk_big_m;
@@ -372,12 +370,7 @@ TEST(TvBound, CoarserJumpGridIsARestriction) {
   pi.block(7, 1, N - 7, 1).setConstant(0.5);  // off the grid of 3
   const auto data = small_data(pi, 0.01, 41, 4);
   const auto lin = sets::linf_bound(data);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(1.0);
-  o.epsilon = lin.epsilon;
-  o.milp.time_limit_s = 600;
-  o.milp.node_limit = 50000;
+  auto o = milp_options(lin.epsilon, 50000);
   const auto fine = sets::sparse_bound(data, o);
   for (auto solver : {sets::SparseSolver::jump_search, sets::SparseSolver::glpk_big_m}) {
     o.solver = solver;
@@ -401,12 +394,7 @@ TEST(TvBound, OffGridWarmStartIsNeverTheIncumbent) {
   pi.block(7, 1, N - 7, 1).setConstant(0.5);
   const auto data = small_data(pi, 0.01, 41, 4);
   const auto lin = sets::linf_bound(data);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(1.0);
-  o.epsilon = lin.epsilon;
-  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides
-  o.milp.node_limit = 50000;
+  auto o = milp_options(lin.epsilon, 50000);
   const auto fine = sets::sparse_bound(data, o);
   bool off_grid = false;
   for (const auto& c : fine.changes) off_grid = off_grid || c.sample % 3 != 0;
@@ -436,12 +424,7 @@ TEST(TvBound, JumpSearchDropsARemovableJumpOfTheStart) {
   Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
   pi.block(7, 1, N - 7, 1).setConstant(0.5);
   const auto data = small_data(pi, 0.01, 41, 4);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(1.0);
-  o.epsilon = sets::linf_bound(data).epsilon;
-  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides
-  o.milp.node_limit = 50000;
+  auto o = milp_options(sets::linf_bound(data).epsilon, 50000);
   const auto opt = sets::sparse_bound(data, o);
   ASSERT_TRUE(opt.status == sets::MilpStatus::optimal);
   Eigen::MatrixXd start = opt.pi;
@@ -469,12 +452,7 @@ TEST(TvBound, CoarseGridStartKeepsTheOptimumAndTheBound) {
   pi.block(43, 2, N - 43, 1).setConstant(-0.4);
   const auto data = small_data(pi, 0.01, 77, 8);
   const auto lin = sets::linf_bound(data);
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(1.0);
-  o.epsilon = lin.epsilon;
-  o.milp.time_limit_s = 600;  // a hang guard; the node limit decides
-  o.milp.node_limit = 200000;
+  auto o = milp_options(lin.epsilon, 200000);
   o.start = lin.pi;
   const auto with = sets::sparse_bound(data, o);
   o.coarse_start = false;
