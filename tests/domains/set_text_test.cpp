@@ -69,3 +69,18 @@ TEST(SetIo, BadTextNamesLineColumnOrField) {
   EXPECT_TRUE(has(m, "unexpected text after the set")) << m;
   EXPECT_THROW(sets::load_text("/nonexistent/set.txt"), sets::InputError);
 }
+
+TEST(SetText, ExtremeNumbersRoundTripBitForBit) {
+  // The shortest text that reads back as the same double, at the ends of the double range too.
+  const double tiny = std::numeric_limits<double>::denorm_min(), big = std::numeric_limits<double>::max();
+  const Eigen::Vector4d lo(-big, tiny, 0.1, 1.0 / 3), hi(-2.2250738585072014e-308, 2 * tiny, 0.30000000000000004, big);
+  const sets::AnySet box = sets::make_box(lo, hi);
+  const std::string text = sets::to_string(box);
+  const sets::AnySet read = sets::from_string(text, "box.txt");
+  const auto& back = std::get<sets::IntervalVector>(read);
+  ASSERT_EQ(back.size(), 4);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(back[i].lower(), lo[i]) << text;
+    EXPECT_EQ(back[i].upper(), hi[i]) << text;
+  }
+}
