@@ -1,5 +1,5 @@
-// Time-varying parameter bounds: the biaffine regression, window norms, the l-inf LP and the
-// sparse MILP (Salehpour & Johansson).
+// Time-varying parameter bounds: the biaffine regression, the l-inf LP and the sparse MILP
+// (Salehpour & Johansson). Window norms: window_norm_test.cpp; the jump search: jump_search_test.cpp.
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -17,6 +17,8 @@
 
 namespace {
 
+using sets::testing::milp_options;
+using sets::testing::small_data;
 using sets::testing::square_input;
 sets::TimeVaryingModel small_model() { return sets::testing::small_oscillator(); }
 
@@ -48,94 +50,6 @@ TEST(TvBound, BiaffineRegressionIsExactForAdditiveAndFirstOrderOtherwise) {
     prev = r;
   }
   EXPECT_TRUE(reg.xi.topRows(1).isZero());
-}
-
-namespace {
-
-// Data of a small problem: the model above simulated with the perturbation pi and output noise
-// of window norm noise_norm.
-sets::TvBoundData small_data(const Eigen::MatrixXd& pi, double noise_norm, unsigned seed, int window = 8,
-                             int input_half_period = 7) {
-  const auto m = small_model();
-  const int N = static_cast<int>(pi.rows());
-  const Eigen::MatrixXd u = square_input(N, input_half_period);
-  const Eigen::VectorXd x0 = Eigen::Vector2d::Zero();
-  const auto w = sets::WindowNorm::pulse(window, 1.0 / window);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
-  Eigen::VectorXd eta(N + 1);
-  for (int k = 0; k <= N; ++k) eta[k] = U(rng);
-  if (noise_norm > 0) eta *= noise_norm / w(eta);
-  else eta.setZero();
-  return {sets::biaffine_regression(m, x0, u), sets::simulate(m, x0, u, pi).y + eta, {w}};
-}
-
-// The sparse-bound options the MILP tests share: mu = 1e-3 on each of the three parameters,
-// |pi| <= max_abs, the window-norm bound epsilon (from linf_bound). The node limit decides where a
-// search stops, so results do not depend on load; the 600 s time limit only guards against a hang.
-sets::SparseBoundOptions milp_options(const Eigen::VectorXd& epsilon, long node_limit, double max_abs = 1.0) {
-  sets::SparseBoundOptions o;
-  o.mu = Eigen::Vector3d::Constant(1e-3);
-  o.max_abs = Eigen::Vector3d::Constant(max_abs);
-  o.epsilon = epsilon;
-  o.milp.time_limit_s = 600;
-  o.milp.node_limit = node_limit;
-  return o;
-}
-
-}  // namespace
-
-TEST(TvBound, WindowNormOfKnownSignals) {
-  const auto w = sets::WindowNorm::pulse(36, 1.0 / 35);
-  EXPECT_NEAR(w(Eigen::VectorXd::Ones(100)), 36.0 / 35, 1e-12);  // full window of ones
-  EXPECT_NEAR(w(Eigen::VectorXd::Ones(10)), 10.0 / 35, 1e-12);   // signal shorter than the window
-  Eigen::VectorXd pulse = Eigen::VectorXd::Zero(50);
-  pulse[20] = -7;
-  EXPECT_NEAR(w(pulse), 7.0 / 35, 1e-12);  // a single spike: the sign does not matter
-  // The unit pulse window gives the l-inf norm.
-  EXPECT_NEAR(sets::WindowNorm::pulse(1, 1.0)(Eigen::Vector3d(1, -4, 2)), 4.0, 0);
-}
-
-TEST(TvBound, BadWindowsAreRejected) {
-  EXPECT_THROW((void)sets::WindowNorm(Eigen::VectorXd()), sets::InputError);  // (void): not a declaration
-  EXPECT_THROW(sets::WindowNorm::pulse(0, 1.0), sets::InputError);
-  EXPECT_THROW(sets::WindowNorm(Eigen::Vector3d(0.5, 0.6, 0.1)), sets::InputError);  // increases at 1
-  EXPECT_THROW(sets::WindowNorm(Eigen::Vector2d(0, 0)), sets::InputError);           // identically zero
-  EXPECT_THROW(sets::WindowNorm(Eigen::Vector2d(1, -0.1)), sets::InputError);
-  EXPECT_THROW(sets::WindowNorm(Eigen::Vector2d(1, NAN)), sets::InputError);
-  try {
-    sets::WindowNorm(Eigen::Vector3d(0.5, 0.4, 0.45));
-    FAIL();
-  } catch (const sets::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("sample 2"), std::string::npos) << e.what();
-  }
-  EXPECT_NO_THROW(sets::WindowNorm(Eigen::Vector3d(0.5, 0.5, 0.0)));  // non-increasing is enough
-}
-
-// The lifted polytope (7) holds (V, |V|) exactly when every output's window norm is <= eps.
-RC_GTEST_PROP(TvBound, LiftedWindowPolytopeIsTheWindowNormBall, ()) {
-  const int samples = *rc::gen::inRange(1, 12), l = *rc::gen::inRange(1, 3);
-  std::vector<sets::WindowNorm> ws;
-  for (int j = 0; j < l; ++j) {
-    const int L = *rc::gen::inRange(1, 6);
-    Eigen::VectorXd w(L);
-    double prev = 1;
-    for (int d = 0; d < L; ++d) w[d] = prev = prev * (*rc::gen::inRange(1, 101)) / 100.0;
-    ws.emplace_back(w);
-  }
-  const sets::WindowNormBall ball(ws, samples);
-  Eigen::VectorXd V(samples * l);
-  for (Eigen::Index i = 0; i < V.size(); ++i) V[i] = *rc::gen::inRange(-1000, 1001) / 100.0;
-  const Eigen::VectorXd n = ball.norms(V);
-  const double scale = *rc::gen::element(0.9, 1.0, 1.1);
-  const Eigen::VectorXd eps = scale * n;
-  const auto poly = ball.lifted_polytope(eps);
-  Eigen::VectorXd z(2 * V.size());
-  z << V, V.cwiseAbs();
-  const bool inside = ((poly.A() * z - poly.b()).array() <= 1e-9 * (1 + n.maxCoeff())).all();
-  const bool expected = scale >= 1.0 || n.maxCoeff() == 0;
-  RC_ASSERT(inside == expected);
-  RC_ASSERT(ball.contains(V, eps, 1e-12) == expected);
 }
 
 namespace {
@@ -334,34 +248,6 @@ TEST(TvBound, PaperAndSingleBinaryFormulationsAgree) {
   EXPECT_LE(data.ball().norms(sets::stack_samples(single.residual))[0], lin.epsilon[0] * (1 + 1e-6) + 1e-9);
 }
 
-TEST(TvBound, JumpSearchAndGlpkMilpFindTheSameOptimum) {
-  // Two solvers of (14), both run to a proven optimum on small problems with two steps: their
-  // objectives agree, the jump search's certified lower bound lies below GLPK's optimum, and its
-  // trajectory keeps the noise bound and the box.
-  std::mt19937 rng(23);
-  const int N = 14;
-  for (int run = 0; run < 4; ++run) {
-    Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-    const int a = std::uniform_int_distribution<int>(2, N - 3)(rng), b = std::uniform_int_distribution<int>(2, N - 3)(rng);
-    pi.block(a, 1, N - a, 1).setConstant(0.6);
-    pi.block(b, 2, N - b, 1).setConstant(-0.4);
-    const auto data = small_data(pi, 0.01, 300 + run, 4);
-    const auto lin = sets::linf_bound(data);
-    auto o = milp_options(lin.epsilon, 50000);
-    o.start = lin.pi;
-    const auto jump = sets::sparse_bound(data, o);
-    o.solver = sets::SparseSolver::glpk_big_m;
-    const auto glpk = sets::sparse_bound(data, o);
-    ASSERT_TRUE(jump.status == sets::MilpStatus::optimal) << "run " << run;
-    ASSERT_TRUE(glpk.status == sets::MilpStatus::optimal) << "run " << run;
-    const double tol = 2e-4 * (1 + std::abs(glpk.objective));
-    EXPECT_NEAR(jump.objective, glpk.objective, tol) << "run " << run;
-    EXPECT_LE(jump.best_bound, glpk.objective + tol) << "run " << run;
-    EXPECT_LE(data.ball().norms(sets::stack_samples(jump.residual))[0], o.epsilon[0] * (1 + 1e-6) + 1e-9);
-    EXPECT_LE(jump.pi.cwiseAbs().maxCoeff(), 1.0 + 1e-9);
-  }
-}
-
 TEST(TvBound, CoarserJumpGridIsARestriction) {
   // The quantized approximation: jumps only where k is a multiple of the grid. Its optimum is
   // feasible for (14), so it is no better than (14)'s; every jump lies on the grid.
@@ -382,91 +268,6 @@ TEST(TvBound, CoarserJumpGridIsARestriction) {
   }
   o.grid = 0;
   EXPECT_THROW(sets::sparse_bound(data, o), sets::InputError);
-}
-
-TEST(TvBound, OffGridWarmStartIsNeverTheIncumbent) {
-  // Regression: with grid > 1 the jump search accepted a warm start with a jump off the grid as
-  // its incumbent, so it returned a point outside the quantized problem (and pruned with its
-  // value). The fine optimum below jumps at sample 7 (off the grid of 3) and is cheaper than any
-  // on-grid trajectory; given as the start, it must be rejected and the coarse optimum found.
-  const int N = 18;
-  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-  pi.block(7, 1, N - 7, 1).setConstant(0.5);
-  const auto data = small_data(pi, 0.01, 41, 4);
-  const auto lin = sets::linf_bound(data);
-  auto o = milp_options(lin.epsilon, 50000);
-  const auto fine = sets::sparse_bound(data, o);
-  bool off_grid = false;
-  for (const auto& c : fine.changes) off_grid = off_grid || c.sample % 3 != 0;
-  ASSERT_TRUE(off_grid) << "the fixture must have an off-grid optimum for this test to mean anything";
-  o.grid = 3;
-  o.epsilon *= 1 + 1e-4;  // the start then keeps the noise bound with room to spare
-  const auto cold = sets::sparse_bound(data, o);
-  ASSERT_TRUE(cold.status == sets::MilpStatus::optimal);
-  ASSERT_GT(cold.objective, fine.objective + 1e-3) << "the grid must cost something here";
-  for (auto solver : {sets::SparseSolver::jump_search, sets::SparseSolver::glpk_big_m}) {
-    o.solver = solver;
-    o.start = fine.pi;
-    const auto warm = sets::sparse_bound(data, o);
-    ASSERT_TRUE(warm.status == sets::MilpStatus::optimal);
-    for (const auto& c : warm.changes) EXPECT_EQ(c.sample % 3, 0) << "jump at " << c.sample;
-    EXPECT_NEAR(warm.objective, cold.objective, 2e-4 * (1 + cold.objective));
-    EXPECT_LE(warm.best_bound, cold.objective + 2e-4 * (1 + cold.objective));
-  }
-}
-
-TEST(TvBound, JumpSearchDropsARemovableJumpOfTheStart) {
-  // The local search on an incumbent: a warm start that is the optimum plus a short pulse in pi1
-  // (two needless jumps) is improved by dropping jumps, one warm-started LP per try. With an LP
-  // budget of 3 (drop the pulse's first jump, its second, then fail to drop the step) the tree
-  // itself is never searched, so only the local search can remove the pulse.
-  const int N = 18;
-  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-  pi.block(7, 1, N - 7, 1).setConstant(0.5);
-  const auto data = small_data(pi, 0.01, 41, 4);
-  auto o = milp_options(sets::linf_bound(data).epsilon, 50000);
-  const auto opt = sets::sparse_bound(data, o);
-  ASSERT_TRUE(opt.status == sets::MilpStatus::optimal);
-  Eigen::MatrixXd start = opt.pi;
-  start.block(3, 0, 2, 1).array() += 5e-3;  // jumps up at 3, down at 5
-  o.epsilon *= 1.2;                          // room for the pulse
-  ASSERT_TRUE(data.ball().contains(sets::stack_samples(data.y) - data.regression.upsilon -
-                                       data.regression.xi * sets::stack_samples(start),
-                                   o.epsilon))
-      << "the pulse must keep the noise bound for the start to be offered";
-  o.start = start;
-  o.milp.node_limit = 3;
-  const auto r = sets::sparse_bound(data, o);
-  EXPECT_LE(r.changes.size(), opt.changes.size());
-  for (const auto& c : r.changes) EXPECT_NE(c.parameter, 0) << "the pulse's jump at " << c.sample << " stayed";
-  EXPECT_LE(r.objective, opt.objective + 5e-3 + 1e-6);  // opt (feasible here) plus at most the pulse's peak
-}
-
-TEST(TvBound, CoarseGridStartKeepsTheOptimumAndTheBound) {
-  // The coarse-grid start and the reweighted-l1 incumbents only supply upper bounds: with and
-  // without the coarse start the search proves the same optimum, and each certified lower bound
-  // lies below the other run's objective. N = 64 so that the 8x coarser grid has 8 positions.
-  const int N = 64;
-  Eigen::MatrixXd pi = Eigen::MatrixXd::Zero(N, 3);
-  pi.block(21, 1, N - 21, 1).setConstant(0.6);
-  pi.block(43, 2, N - 43, 1).setConstant(-0.4);
-  const auto data = small_data(pi, 0.01, 77, 8);
-  const auto lin = sets::linf_bound(data);
-  auto o = milp_options(lin.epsilon, 200000);
-  o.start = lin.pi;
-  const auto with = sets::sparse_bound(data, o);
-  o.coarse_start = false;
-  const auto without = sets::sparse_bound(data, o);
-  ASSERT_TRUE(with.status == sets::MilpStatus::optimal);
-  ASSERT_TRUE(without.status == sets::MilpStatus::optimal);
-  const double tol = 2e-4 * (1 + std::abs(without.objective));
-  EXPECT_NEAR(with.objective, without.objective, tol);
-  EXPECT_LE(with.best_bound, without.objective + tol);
-  EXPECT_LE(without.best_bound, with.objective + tol);
-  EXPECT_LE(data.ball().norms(sets::stack_samples(with.residual))[0], o.epsilon[0] * (1 + 1e-6) + 1e-9);
-  RecordProperty("lps", std::to_string(with.nodes) + " with, " + std::to_string(without.nodes) + " without");
-  std::printf("LPs: %ld with the coarse start, %ld without; objective %.4f, %zu jumps\n", with.nodes, without.nodes,
-              with.objective, with.changes.size());
 }
 
 namespace {
