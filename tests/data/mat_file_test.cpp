@@ -5,16 +5,20 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <matio.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "sets/core/error.hpp"
+#include "data/mat_file.hpp"
 #include "sets/data/recording.hpp"
 #include "support/messages.hpp"
 #include "support/shared_data.hpp"
@@ -140,4 +144,86 @@ TEST(Recording, MatFileHasTheSameRecordAsTheCsv) {
   const auto& vir = m.column("vir");
   const auto& u = c.column("u");
   for (int k = 0; k < m.rows(); k += 997) EXPECT_NEAR(vir[static_cast<std::size_t>(k)], u[static_cast<std::size_t>(k)], 1e-9);
+}
+
+namespace {
+
+// Writes `vars` (name -> rows x cols doubles, column-major) and an int32 vector with matio in the
+// given format; false if this matio cannot write that format.
+bool write_with_matio(const std::string& path, mat_ft format, matio_compression compression) {
+  mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, format);
+  if (!mat) return false;
+  bool ok = true;
+  auto put = [&](const char* name, std::size_t rows, std::size_t cols, std::vector<double> values) {
+    std::size_t dims[2] = {rows, cols};
+    matvar_t* v = Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, values.data(), 0);
+    ok = ok && v && Mat_VarWrite(mat, v, compression) == 0;
+    Mat_VarFree(v);
+  };
+  put("t", 1, 5, {0.0, 0.1, 0.2, 0.30000000000000004, 0.4});  // a row vector
+  put("u", 5, 1, {1, -2, 1e-310, 3, -1e300});                   // a column; a subnormal; a large value
+  put("gain", 1, 1, {2.5});                                      // a scalar: not a signal
+  put("M", 2, 3, {1, 2, 3, 4, 5, 6});                            // a matrix: not a signal
+  if (format != MAT_FT_MAT4) {
+    std::int32_t counts[5] = {7, -8, 9, 0, 2147483647};
+    std::size_t dims[2] = {5, 1};
+    matvar_t* v = Mat_VarCreate("n", MAT_C_INT32, MAT_T_INT32, 2, dims, counts, 0);
+    ok = ok && v && Mat_VarWrite(mat, v, compression) == 0;
+    Mat_VarFree(v);
+  }
+  Mat_Close(mat);
+  return ok;
+}
+
+}  // namespace
+
+TEST(MatFile, VectorsWrittenByMatioReadBackExactlyInEveryFormat) {
+  struct Case {
+    const char* what;
+    mat_ft format;
+    matio_compression compression;
+  };
+  for (const Case& c : {Case{"v5", MAT_FT_MAT5, MAT_COMPRESSION_NONE}, Case{"v5 compressed", MAT_FT_MAT5, MAT_COMPRESSION_ZLIB},
+                        Case{"v4", MAT_FT_MAT4, MAT_COMPRESSION_NONE}, Case{"v7.3", MAT_FT_MAT73, MAT_COMPRESSION_NONE}}) {
+    SCOPED_TRACE(c.what);
+    const std::string path = temp_file("");
+    if (!write_with_matio(path, c.format, c.compression)) {
+      std::filesystem::remove(path);
+      if (c.format == MAT_FT_MAT73) continue;  // matio without HDF5 cannot write v7.3
+      FAIL() << "matio could not write " << c.what;
+    }
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Mat_format expected = c.format == MAT_FT_MAT4 ? Mat_format::v4 : c.format == MAT_FT_MAT73 ? Mat_format::v73 : Mat_format::v5;
+    EXPECT_EQ(mat_format(bytes), expected);
+    const Recording r = read_mat(path);
+    std::filesystem::remove(path);
+    std::vector<std::string> names{"t", "u"};
+    if (c.format != MAT_FT_MAT4) names.push_back("n");
+    std::vector<std::string> got = r.names;
+    if (c.format == MAT_FT_MAT73) {  // HDF5 lists the variables by name, not in writing order
+      std::sort(got.begin(), got.end());
+      std::sort(names.begin(), names.end());
+    }
+    EXPECT_EQ(got, names);  // file order; the scalar and the matrix are skipped
+    ASSERT_EQ(r.rows(), 5);
+    EXPECT_EQ(r.column("t"), (std::vector<double>{0.0, 0.1, 0.2, 0.30000000000000004, 0.4}));
+    EXPECT_EQ(r.column("u"), (std::vector<double>{1, -2, 1e-310, 3, -1e300}));
+    if (c.format != MAT_FT_MAT4) EXPECT_EQ(r.column("n"), (std::vector<double>{7, -8, 9, 0, 2147483647}));
+  }
+}
+
+TEST(MatFile, ReadersOfTheBytesNameTheFileAndOffsetOfATruncatedElement) {
+  const std::string path = temp_file("");
+  ASSERT_TRUE(write_with_matio(path, MAT_FT_MAT5, MAT_COMPRESSION_NONE));
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  const auto vars = read_mat_v5_vectors(bytes, "x.mat");
+  ASSERT_EQ(vars.size(), 3u);
+  EXPECT_EQ(vars[0].name, "t");
+  bytes.resize(bytes.size() - 3);  // the last element (the int32 vector) loses its end
+  const std::string m = input_error_of([&] { read_mat_v5_vectors(bytes, "x.mat"); });
+  EXPECT_TRUE(contains(m, "x.mat")) << m;
+  EXPECT_TRUE(contains(m, "byte ")) << m;
 }

@@ -526,3 +526,45 @@ TEST(HinfWeight, LpInUnitsOfTheLargestDelta) {
   TransferFunction G0;
   expect_a_valid_weight(app_example_run(1000, 28, G0), G0);
 }
+
+// The between-grid terms of step 4 (docs/methods/hinf-bound.md §6): on a grid of 3 frequencies
+// the weighted error of this FIR system peaks between the grid points far above its grid values
+// (b_grid = 1), so a bound without the Lipschitz remainder (lambda_j beta_j in b_prior, g_j in
+// b_data) would miss it. Every reported bound that claims all of [0, pi] must hold the dense-grid
+// maximum.
+TEST(HinfBetweenGrid, PeakBetweenGridPointsIsInsideEveryBoundThatClaimsAllFrequencies) {
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int n = 8;
+  std::vector<double> g(n);
+  for (int k = 0; k < n; ++k) g[k] = 0.9 * std::pow(0.9, k) * U(rng);  // within the prior M = 1, rho = 0.9
+  const auto G0 = [&](double w) {
+    cd s = 0;
+    for (int k = 0; k < n; ++k) s += g[k] * std::polar(1.0, -w * (k + 1));
+    return s;
+  };
+  const int pre = 100, N = 400;
+  const double vbar = 0.01;
+  Eigen::VectorXd u(pre + N), y = Eigen::VectorXd::Zero(pre + N);
+  for (auto& x : u) x = U(rng);
+  for (int t = 0; t < pre + N; ++t)
+    for (int k = 0; k < n && k < t; ++k) y[t] += g[k] * u[t - k - 1];
+  for (auto& x : y) x += vbar * U(rng);
+  HinfPriors priors;
+  priors.M = 1;
+  priors.rho = 0.9;
+  priors.u_bar = 1;
+  HinfBoundOptions opt;
+  opt.uncertainty.noise = NoiseModel::bounded;
+  opt.uncertainty.v_bar = vbar;
+  opt.weight.degree = 2;
+  opt.nominal.iterations = 4;
+  const HinfBoundResult R = hinf_bound(HinfData{u.tail(N), y.tail(N), {}},
+                                       HinfStructure{OrthonormalBasis::fir(), n, priors, uniform_grid(3)}, opt);
+  ASSERT_FALSE(R.set.empty);
+  const double peak = weighted_error(G0, R.nominal.model, R.weight.h, 8192);
+  ASSERT_GT(peak, 2 * R.bound.b_grid) << "the fixture must peak between the grid points for this test to mean anything";
+  EXPECT_LE(peak, R.bound.b);
+  EXPECT_LE(peak, R.bound.b_prior);
+  EXPECT_LE(peak, R.bound.b_data);
+}
