@@ -1,0 +1,50 @@
+// The hypothesis search of the diagnosis (src/diagnosis/hypotheses.cpp): on the Coulomb-friction
+// plant the catalogue's Coulomb law is chosen first, with its parameter added to the model; on a
+// clean plant nothing is chosen.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "sets/diagnosis/residual_tests.hpp"
+#include "sets/examples/synthetic_plants.hpp"
+#include "support/diagnosis_stages.hpp"
+
+using namespace sets;
+using namespace sets::diagnosis_stage;
+
+namespace {
+
+HypothesisSearch search(test::StageRun& s) {
+  s.options.max_effects = 1;
+  s.options.varying_segments = 10;
+  const NominalFit nominal = calibrate_nominal(s.c(), s.d);
+  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  return search_hypotheses(s.c(), nominal, noise, s.d);
+}
+
+}  // namespace
+
+TEST(Hypotheses, CoulombLawIsChosenForTheCoulombPlant) {
+  test::StageRun s(synthetic_plant("coulomb_friction"));
+  const HypothesisSearch h = search(s);
+  ASSERT_EQ(h.chosen.size(), 1u);
+  ASSERT_EQ(s.d.effects.size(), 1u);
+  EXPECT_EQ(s.d.effects[0].name, "coulomb_friction");
+  EXPECT_FALSE(s.d.nothing_missing);
+  EXPECT_GT(s.d.effects[0].cost_reduction_estimation, s.options.min_cost_reduction);
+  EXPECT_GT(s.d.hypotheses_screened, 1);
+  EXPECT_GE(s.d.hypotheses_screened, s.d.hypotheses_refined);
+  // The chosen effect's parameter is in the current model, and it passed every rule it reports.
+  EXPECT_GT(h.current.parameters.size(), s.model.parameters.size());
+  for (const auto& r : s.d.effects[0].rules) EXPECT_TRUE(r.passed || !r.applies) << r.name;
+}
+
+TEST(Hypotheses, NothingIsChosenForACleanPlant) {
+  test::StageRun s(synthetic_plant("clean_axis"));
+  const HypothesisSearch h = search(s);
+  EXPECT_TRUE(h.chosen.empty());
+  EXPECT_TRUE(s.d.effects.empty()) << s.d.effects.front().name;
+  EXPECT_EQ(h.current.parameters.size(), s.model.parameters.size());
+}

@@ -1,0 +1,45 @@
+#pragma once
+// Runs the stages of sets::diagnose (src/diagnosis/stages.hpp) one at a time on a plant, the way
+// diagnose() chains them, so that each stage's own contract can be tested on its output.
+
+#include <memory>
+#include <string>
+
+#include "diagnosis/stages.hpp"
+#include "sets/data/intersample.hpp"
+#include "sets/examples/synthetic_plants.hpp"
+
+namespace sets::test {
+
+struct StageRun {
+  ModelFile model;
+  Recording estimation, validation;
+  DiagnosisOptions options;
+  std::unique_ptr<Simulator> exact, fast, exact_validation;
+  std::unique_ptr<diagnosis_stage::Context> context;
+  Diagnosis d;
+
+  /// The plant's nominal and records; screening with the final substeps (no substep search), one
+  /// thread, no progress lines.
+  explicit StageRun(const SyntheticPlant& plant, bool with_validation = true)
+      : model(with_intersample(plant.nominal)), estimation(plant.estimation), validation(plant.validation) {
+    options.threads = 1;
+    options.final_substeps = 4;
+    options.screening_substeps = 4;
+    exact = std::make_unique<Simulator>(model, estimation, SimulationOptions{options.final_substeps});
+    fast = std::make_unique<Simulator>(model, estimation, SimulationOptions{options.screening_substeps});
+    if (with_validation)
+      exact_validation = std::make_unique<Simulator>(model, validation, SimulationOptions{options.final_substeps});
+    d.has_validation = with_validation;
+    d.outputs = exact->output_columns();
+    context = std::make_unique<diagnosis_stage::Context>(diagnosis_stage::Context{
+        model, estimation, with_validation ? &validation : nullptr, options, *exact, *fast, exact_validation.get(),
+        [](const std::string&) {}});
+  }
+  StageRun(const StageRun&) = delete;
+  StageRun& operator=(const StageRun&) = delete;
+
+  const diagnosis_stage::Context& c() const { return *context; }
+};
+
+}  // namespace sets::test
