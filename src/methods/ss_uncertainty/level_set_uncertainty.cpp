@@ -40,8 +40,8 @@ const char* to_string(ResidualNorm n) {
   return "?";
 }
 
-double residual_bound(const CanonicalRegression& r, const Eigen::Ref<const Eigen::VectorXd>& eps,
-                      const LevelSetOptions& o, int* attaining_row) {
+ResidualBound residual_bound(const CanonicalRegression& r, const Eigen::Ref<const Eigen::VectorXd>& eps,
+                             const LevelSetOptions& o) {
   if (eps.size() != r.y.size()) throw InputError("residual_bound: residual vector has the wrong length");
   double ell = -1;
   int arg = -1;
@@ -78,8 +78,7 @@ double residual_bound(const CanonicalRegression& r, const Eigen::Ref<const Eigen
     }
   }
   if (arg < 0) throw InputError("residual_bound: no residual row is selected");
-  if (attaining_row) *attaining_row = arg;
-  return ell;
+  return {ell, arg};
 }
 
 LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOptions& o) {
@@ -97,7 +96,9 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
     d.R = r.Psi.transpose() * r.Psi;
     d.residuals = r.y - r.Psi * d.theta;
     d.j_min = 0.5 * d.residuals.squaredNorm();
-    d.ell = residual_bound(r, d.residuals, o, &d.ell_row);
+    const ResidualBound bound = residual_bound(r, d.residuals, o);
+    d.ell = bound.ell;
+    d.ell_row = bound.attaining_row;
     d.ell_per_equation = Eigen::VectorXd::Constant(r.equations, d.ell);
     d.j_d = d.j_min + 0.5 * o.level_factor * d.ell * d.ell;
     // 1/2 dtheta^T R dtheta <= l^2  <=>  dtheta^T R dtheta <= 2 l^2 (level_factor 2).
@@ -109,7 +110,9 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
   d.ell_per_equation = Eigen::VectorXd::Zero(r.equations);
   for (int k = 0; k < eps0.size(); ++k)
     d.ell_per_equation[r.equation[k]] = std::max(d.ell_per_equation[r.equation[k]], std::abs(eps0[k]));
-  d.ell = residual_bound(r, eps0, o, &d.ell_row);
+  const ResidualBound bound = residual_bound(r, eps0, o);
+  d.ell = bound.ell;
+  d.ell_row = bound.attaining_row;
   const double floor = 1e-12 * d.ell;
   Eigen::VectorXd w(eps0.size());
   for (int k = 0; k < eps0.size(); ++k) w[k] = 1.0 / std::max(d.ell_per_equation[r.equation[k]], floor);

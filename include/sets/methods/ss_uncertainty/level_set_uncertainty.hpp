@@ -55,9 +55,15 @@ struct LevelSetDomain {
 /// singular (the parameters are not identifiable) or no residual row is selected.
 LevelSetDomain level_set_domain(const CanonicalRegression& regression, const LevelSetOptions& options = {});
 
-/// l of a residual vector under the options (exposed for tests and for the FPS bound).
-double residual_bound(const CanonicalRegression& regression, const Eigen::Ref<const Eigen::VectorXd>& residuals,
-                      const LevelSetOptions& options, int* attaining_row = nullptr);
+/// l of a residual vector under the options, and the row (entrywise, per_equation) or first row
+/// of the sample that attains it.
+struct ResidualBound {
+  double ell = 0;
+  int attaining_row = -1;
+};
+/// Exposed for tests and for the FPS bound.
+ResidualBound residual_bound(const CanonicalRegression& regression, const Eigen::Ref<const Eigen::VectorXd>& residuals,
+                             const LevelSetOptions& options);
 
 /// The feasible parameter set of the same regression with |y_M - Psi theta| <= bound on every
 /// row. Rows whose regressor is zero do not constrain theta; those whose |y| exceeds the bound
