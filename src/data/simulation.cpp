@@ -237,10 +237,11 @@ struct Run {
 
 }  // namespace
 
-// `schedule` (optional, samples x parameters): the parameter values held over each sample
-// interval, replacing `params` from that sample on.
-static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& params, Eigen::MatrixXd* outputs,
-               Eigen::MatrixXd* values, const Eigen::Ref<const Eigen::MatrixXd>* schedule = nullptr) {
+// Fills `outputs` (samples x outputs) and, with `record_values`, `values` (samples x recorded
+// signals). `schedule` (samples x parameters, or empty for none): the parameter values held over
+// each sample interval, replacing `params` from that sample on.
+static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& params, Eigen::MatrixXd& outputs,
+               bool record_values, Eigen::MatrixXd& values, const Eigen::Ref<const Eigen::MatrixXd>& schedule) {
   Run r;
   const int N = static_cast<int>(I.time.size());
   const std::size_t ns = I.state_slots.size();
@@ -249,15 +250,16 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
   for (std::size_t i = 0; i < I.param_slots.size(); ++i) I.slots[static_cast<std::size_t>(I.param_slots[i])] = params[static_cast<Eigen::Index>(i)];
   std::vector<double> hist(static_cast<std::size_t>(N) * nr, 0.0);
   std::vector<double> x(I.initial_state), k1(ns), k2(ns), k3(ns), k4(ns), xt(ns);
-  if (outputs) outputs->resize(N, static_cast<Eigen::Index>(I.output_slots.size()));
-  if (values) values->resize(N, static_cast<Eigen::Index>(nr));
+  outputs.resize(N, static_cast<Eigen::Index>(I.output_slots.size()));
+  if (record_values) values.resize(N, static_cast<Eigen::Index>(nr));
+  const bool scheduled = schedule.rows() > 0;
   std::vector<bool> filled(nr, false);
   for (int k = 0; k < N; ++k) {
     const double tk = I.time[static_cast<std::size_t>(k)];
     I.slots[static_cast<std::size_t>(I.t_slot)] = tk;
-    if (schedule)
+    if (scheduled)
       for (std::size_t i = 0; i < I.param_slots.size(); ++i)
-        I.slots[static_cast<std::size_t>(I.param_slots[i])] = (*schedule)(k, static_cast<Eigen::Index>(i));
+        I.slots[static_cast<std::size_t>(I.param_slots[i])] = schedule(k, static_cast<Eigen::Index>(i));
     for (std::size_t i = 0; i < I.input_slots.size(); ++i)
       I.slots[static_cast<std::size_t>(I.input_slots[i])] = I.input_data[i].at(static_cast<std::size_t>(k), 0);
     for (std::size_t i = 0; i < ns; ++i) I.slots[static_cast<std::size_t>(I.state_slots[i])] = x[i];
@@ -283,11 +285,10 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
       I.slots[static_cast<std::size_t>(I.sampled_slots[i])] = I.sampled_expr[i].Eval();
     I.eval_signals();  // signals may use sampled values
     for (std::size_t i = 0; i < nr; ++i) hist[static_cast<std::size_t>(k) * nr + i] = I.slots[static_cast<std::size_t>(I.recorded_slots[i])];
-    if (outputs)
-      for (std::size_t j = 0; j < I.output_slots.size(); ++j)
-        (*outputs)(k, static_cast<Eigen::Index>(j)) = I.slots[static_cast<std::size_t>(I.output_slots[j])];
-    if (values)
-      for (std::size_t i = 0; i < nr; ++i) (*values)(k, static_cast<Eigen::Index>(i)) = hist[static_cast<std::size_t>(k) * nr + i];
+    for (std::size_t j = 0; j < I.output_slots.size(); ++j)
+      outputs(k, static_cast<Eigen::Index>(j)) = I.slots[static_cast<std::size_t>(I.output_slots[j])];
+    if (record_values)
+      for (std::size_t i = 0; i < nr; ++i) values(k, static_cast<Eigen::Index>(i)) = hist[static_cast<std::size_t>(k) * nr + i];
     if (k + 1 == N) break;
     const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
     double tt = tk;
@@ -315,9 +316,9 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
         }
     }
   }
-  if (outputs && !outputs->allFinite()) {
+  if (!outputs.allFinite()) {
     for (int k = 0; k < N; ++k)
-      if (!outputs->row(k).allFinite()) {
+      if (!outputs.row(k).allFinite()) {
         r.ok = false;
         r.t_fail = I.time[static_cast<std::size_t>(k)];
         r.state_fail = "an output";
@@ -332,7 +333,7 @@ SimulationResult Simulator::simulate(const Eigen::Ref<const Eigen::VectorXd>& pa
   for (int s : impl_->recorded_slots) res.names.push_back(impl_->name_of_slot.at(s));
   Run r;
   try {
-    r = run(*impl_, parameters, &res.outputs, &res.values);
+    r = run(*impl_, parameters, res.outputs, true, res.values, Eigen::MatrixXd());
   } catch (const mu::Parser::exception_type& e) {
     throw NumericalError(impl_->model.source + ": expression evaluation failed: " + e.GetMsg());
   }
@@ -347,7 +348,8 @@ SimulationResult Simulator::simulate(const Eigen::Ref<const Eigen::VectorXd>& pa
 
 bool Simulator::simulate_outputs(const Eigen::Ref<const Eigen::VectorXd>& parameters, Eigen::MatrixXd& outputs) const {
   try {
-    return run(*impl_, parameters, &outputs, nullptr).ok;
+    Eigen::MatrixXd unused;
+    return run(*impl_, parameters, outputs, false, unused, Eigen::MatrixXd()).ok;
   } catch (const mu::Parser::exception_type&) {
     return false;
   }
@@ -360,7 +362,8 @@ bool Simulator::simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixX
                      ", expected samples x parameters = " + std::to_string(samples()) + " x " +
                      std::to_string(impl_->param_slots.size()));
   try {
-    return run(*impl_, schedule.row(0).transpose(), &outputs, nullptr, &schedule).ok;
+    Eigen::MatrixXd unused;
+    return run(*impl_, schedule.row(0).transpose(), outputs, false, unused, schedule).ok;
   } catch (const mu::Parser::exception_type&) {
     return false;
   }
