@@ -14,8 +14,9 @@ using namespace sets::diagnosis_stage;
 
 TEST(Augment, CoulombPlantFitsBetterAndTheIntervalHoldsTheTrueFrictionLevel) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
-  test::StageRun s(p);
+  test::StageRun s(p, true, 1500);
   s.options.max_effects = 1;
+  s.options.refine = 1;
   s.options.varying_segments = 10;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);

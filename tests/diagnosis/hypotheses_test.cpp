@@ -17,6 +17,7 @@ namespace {
 
 HypothesisSearch search(test::StageRun& s) {
   s.options.max_effects = 1;
+  s.options.refine = 1;
   s.options.varying_segments = 10;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
@@ -27,7 +28,7 @@ HypothesisSearch search(test::StageRun& s) {
 }  // namespace
 
 TEST(Hypotheses, CoulombLawIsChosenForTheCoulombPlant) {
-  test::StageRun s(synthetic_plant("coulomb_friction"));
+  test::StageRun s(synthetic_plant("coulomb_friction"), true, 1500);
   const HypothesisSearch h = search(s);
   ASSERT_EQ(h.chosen.size(), 1u);
   ASSERT_EQ(s.d.effects.size(), 1u);
@@ -42,7 +43,7 @@ TEST(Hypotheses, CoulombLawIsChosenForTheCoulombPlant) {
 }
 
 TEST(Hypotheses, NothingIsChosenForACleanPlant) {
-  test::StageRun s(synthetic_plant("clean_axis"));
+  test::StageRun s(synthetic_plant("clean_axis"), true, 1500);
   const HypothesisSearch h = search(s);
   EXPECT_TRUE(h.chosen.empty());
   EXPECT_TRUE(s.d.effects.empty()) << s.d.effects.front().name;

@@ -22,7 +22,7 @@ TEST(Locate, OutputNormsAreTheSpreadAboutTheMeanAndOneForAConstant) {
 
 TEST(Locate, CoulombPlantMismatchIsPlacedInsideTheRecordAndBelowNyquist) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
-  test::StageRun s(p);
+  test::StageRun s(p, true, 2000);
   s.options.varying_segments = 10;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);

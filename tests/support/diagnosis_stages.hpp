@@ -19,10 +19,12 @@ struct StageRun {
   std::unique_ptr<diagnosis_stage::Context> context;
   Diagnosis d;
 
-  /// The plant's nominal and records; screening with the final substeps (no substep search), one
-  /// thread, no progress lines.
-  explicit StageRun(const SyntheticPlant& plant, bool with_validation = true)
-      : model(with_intersample(plant.nominal)), estimation(plant.estimation), validation(plant.validation) {
+  /// The plant's nominal and records (the first `samples` of each when > 0, to keep a test
+  /// short); screening with the final substeps (no substep search), one thread, no progress lines.
+  explicit StageRun(const SyntheticPlant& plant, bool with_validation = true, int samples = 0)
+      : model(with_intersample(plant.nominal)),
+        estimation(first_samples(plant.estimation, samples)),
+        validation(first_samples(plant.validation, samples)) {
     options.threads = 1;
     options.final_substeps = 4;
     options.screening_substeps = 4;
@@ -40,6 +42,13 @@ struct StageRun {
   StageRun& operator=(const StageRun&) = delete;
 
   const diagnosis_stage::Context& c() const { return *context; }
+
+  static Recording first_samples(Recording r, int samples) {
+    if (samples > 0)
+      for (auto& column : r.columns)
+        if (static_cast<int>(column.size()) > samples) column.resize(static_cast<std::size_t>(samples));
+    return r;
+  }
 };
 
 }  // namespace sets::test

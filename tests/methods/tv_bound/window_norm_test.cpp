@@ -77,7 +77,7 @@ double max_over_ball(const sets::WindowNorm& w, const Eigen::VectorXd& c, double
   obj.head(n) = c;
   lp.set_objective(obj, sets::Sense::maximize);
   const sets::LpSolution s = lp.solve();
-  EXPECT_EQ(s.status, sets::LpStatus::optimal);
+  EXPECT_TRUE(s.status == sets::LpStatus::optimal);
   return s.objective;
 }
 
@@ -112,7 +112,7 @@ TEST(WindowNorm, SmallestEpsOfAFixedSignalIsItsWindowNorm) {
   obj[blk.first_eps] = 1;
   lp.set_objective(obj, sets::Sense::minimize);
   const sets::LpSolution s = lp.solve();
-  ASSERT_EQ(s.status, sets::LpStatus::optimal);
+  ASSERT_TRUE(s.status == sets::LpStatus::optimal);
   EXPECT_NEAR(s.objective, w(v), 1e-9);
   // Hand computation: the largest row is k = 4: 0.4*3 + 0.3*0 + 0.3*1 + 0.1*2 = 1.7.
   EXPECT_NEAR(w(v), 1.7, 1e-12);
