@@ -1,5 +1,6 @@
 #include "sets/fps/feasible_parameter_set.hpp"
 
+#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "sets/numeric/linear_program.hpp"
 #include "sets/numeric/lp_certificate.hpp"
 #include "numeric/certified_extent.hpp"
+#include "numeric/verified_linear_algebra.hpp"
 
 namespace sets {
 
@@ -380,19 +382,95 @@ std::optional<Eigen::VectorXd> inscribed_centre(const FeasibleParameterSet& fps,
   return std::nullopt;
 }
 
+// A rigorous box around a set of exact-regressor samples from p of them: with A the regressor
+// rows of samples S (A invertible) and Y_S their output intervals, every theta of the set has
+// A theta in Y_S, so theta = A^{-1} y for some y in Y_S. With a verified approximate inverse X
+// (||A^{-1} - X||_2 <= dev), theta_l lies in (X Y_S)_l +- dev ||Y_S||_2. Finite whenever such
+// rows exist, i.e. whenever the set is bounded; loose (about cond(A) times the noise bound),
+// but a true bound, where the LP solver may call a bounded set unbounded (near-collinear
+// regressors: the distinguishing entries fall under its pivot tolerance). S: the rows a
+// column-pivoted QR of Phi^T picks first (the best-conditioned choice it sees).
+std::optional<IntervalVector> strip_box(const FeasibleParameterSet& fps) {
+  const int p = fps.dimension();
+  if (fps.has_interval_regressors() || fps.size() < p) return std::nullopt;
+  const Eigen::MatrixXd Phi = lower(IntervalMatrix(fps.regressors()));
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Phi.transpose());
+  if (qr.rank() < p) return std::nullopt;
+  Eigen::MatrixXd A(p, p);
+  IntervalVector Y(p);
+  for (int k = 0; k < p; ++k) {
+    const Eigen::Index t = qr.colsPermutation().indices()[k];
+    A.row(k) = Phi.row(t);
+    Y[k] = fps.outputs()[t];
+  }
+  const Eigen::MatrixXd X = A.fullPivLu().inverse();
+  if (!X.allFinite()) return std::nullopt;
+  const std::optional<double> dev = detail::inverse_deviation_bound(A, X);
+  if (!dev) return std::nullopt;
+  const double e = (Interval(*dev) * Interval(detail::norm_upper(Y))).upper();
+  IntervalVector box = multiply(X, Y);
+  for (int l = 0; l < p; ++l) box[l] += Interval(-e, e);
+  if (!lower(box).allFinite() || !upper(box).allFinite()) return std::nullopt;
+  return box;
+}
+
+// Recovery for ends the LPs left infinite (GLPK's "unbounded" on a set that strip_box proves
+// bounded, or an extent that could not be certified): per end, the tighter of the proven box
+// and a safe bound of the LP over it. The box is a true bound of the set, so any multipliers
+// give a valid bound over it (no artificial faces, no all-or-nothing certification); an LP that
+// fails leaves the box's end. Directions get the box's support where they had none.
+void bound_infinite_ends(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
+                         const std::vector<Eigen::VectorXd>& directions, detail::Extent& e, int& lps) {
+  if (lower(make_box(e.lo, e.hi)).allFinite() && upper(make_box(e.lo, e.hi)).allFinite()) return;
+  const std::optional<IntervalVector> box = strip_box(fps);
+  if (!box) return;
+  const int p = fps.dimension();
+  OrthantLp o(fps, s, options);
+  for (int j = 0; j < p; ++j) {
+    const double lo = std::max((*box)[j].lower(), o.lp().variable_lower(j));
+    const double hi = std::min((*box)[j].upper(), o.lp().variable_upper(j));
+    if (!(lo <= hi)) return;  // the set misses this orthant; leave it to the LPs' verdict
+    o.lp().set_variable_bounds(j, lo, hi);
+  }
+  for (int l = 0; l < p; ++l) {
+    for (Sense sense : {Sense::minimize, Sense::maximize}) {
+      const bool lower_end = sense == Sense::minimize;
+      double& end = lower_end ? e.lo[l] : e.hi[l];
+      if (std::isfinite(end)) continue;  // certified already
+      end = lower_end ? o.lp().variable_lower(l) : o.lp().variable_upper(l);
+      o.lp().set_objective_coordinate(l, sense);
+      try {
+        const LpSolution sol = o.solve(lps);
+        const double b = o.lp().safe_bound(sol);  // +-inf unless optimal
+        end = lower_end ? std::max(end, b) : std::min(end, b);
+      } catch (const NumericalError&) {
+      }
+    }
+  }
+  for (std::size_t k = 0; k < directions.size() && k < e.maxima.size(); ++k)
+    if (e.maxima[k] == inf) e.maxima[k] = detail::dot(to_interval(directions[k]), *box).upper();
+  e.certified = true;  // every end is now a safe bound or an end of the proven box
+}
+
 OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
                              const std::vector<Eigen::VectorXd>& directions) {
   OrthantLp o(fps, s, options);
   // The orthant's sign constraints are variable bounds of the LP, so ends on a coordinate face
   // are exact and need no artificial face there.
-  const detail::Extent e =
+  detail::Extent e =
       detail::certified_extent(o.lp(), [&](int& lps) { return o.solve(lps); }, directions, options.safe);
+  int lps = e.lps;
+  if (options.safe && e.status == detail::ExtentStatus::feasible) bound_infinite_ends(fps, s, options, directions, e, lps);
   OrthantOutcome out;
-  out.lps = e.lps;
+  out.lps = lps;
   out.fallbacks = o.fallbacks();
   out.status = e.status == detail::ExtentStatus::feasible ? OrthantStatus::feasible
                : e.status == detail::ExtentStatus::empty  ? OrthantStatus::empty
                                                           : OrthantStatus::unknown;
+  if (out.status == OrthantStatus::unknown && options.safe) {
+    // Undecided, but a proven box still bounds whatever of the set there is.
+    if (const std::optional<IntervalVector> box = strip_box(fps)) out.box = *box;
+  }
   if (out.status != OrthantStatus::feasible) return out;
   out.float_lo = e.float_lo;
   out.float_hi = e.float_hi;
@@ -480,7 +558,7 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
     if (oc.status == OrthantStatus::unknown) {
       // Undecided: never counted as empty. The orthant itself bounds whatever lies in it.
       ++unknown_orthants;
-      oc.box = orthant_box(s, p);
+      if (oc.box.size() != p) oc.box = orthant_box(s, p);
       maxima.assign(directions.size(), inf);
     }
     if (oc.status == OrthantStatus::empty) ++empty_orthants;

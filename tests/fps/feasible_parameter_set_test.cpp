@@ -619,3 +619,42 @@ TEST(Pui, BadlyScaledColumnsTheFiveMissesOfTheSoundnessCampaign) {
       EXPECT_LT(r.box[j].lower(), r.box[j].upper()) << where << ", theta_" << j;
   }
 }
+
+TEST(Pui, NearCollinearRegressorsGetFiniteProvenEndsWhereTheLpSaidUnbounded) {
+  // Columns a_j c + eps_j z with eps_j down to 1e-10: the set is bounded (the regressors have
+  // full column rank) but extremely long, and GLPK called it unbounded (seed 8) or found no
+  // feasible point without a certificate of emptiness (seed 3, an undecided orthant): every end
+  // was infinite. A box proven from p samples (verified inverse), tightened by safe bounds of
+  // the LP over it, bounds every end; it must hold the truth.
+  for (unsigned long seed : {3ul, 8ul}) {
+    const sets::BoundedErrorRegression problem = sets::bounded_error_regression(seed);
+    ASSERT_TRUE(problem.kind == sets::RegressionKind::near_collinear);
+    const sets::PuiResult r = sets::pui(problem.fps, problem.options);
+    const std::string where = "seed " + std::to_string(seed);
+    EXPECT_NE(r.consistency.falsified, sets::Falsified::yes) << where;
+    EXPECT_TRUE(sets::lower(r.box).allFinite() && sets::upper(r.box).allFinite()) << where;
+    EXPECT_TRUE(sets::contains(r.box, problem.theta)) << where;
+  }
+}
+
+TEST(Pui, AGenuinelyUnboundedDirectionKeepsItsInfiniteEnds) {
+  // Two identical regressor columns: theta_0 - theta_1 is free (the ray (1, -1, 0) has
+  // phi . d = 0 on every sample), so theta_0 and theta_1 are unbounded both ways, and no proven
+  // box may make them finite.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd Phi(30, 3);
+  Eigen::VectorXd y(30), delta = Eigen::VectorXd::Constant(30, 0.01);
+  for (int t = 0; t < 30; ++t) {
+    Phi(t, 0) = Phi(t, 1) = u(rng);
+    Phi(t, 2) = u(rng);
+    y[t] = 0.5 * Phi(t, 0) + 0.25 * Phi(t, 1) - Phi(t, 2);
+  }
+  const sets::PuiResult r = sets::pui(FeasibleParameterSet::from_data(Phi, y, delta));
+  EXPECT_EQ(r.consistency.falsified, sets::Falsified::no);
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_EQ(r.box[j].lower(), -sets::inf) << j;
+    EXPECT_EQ(r.box[j].upper(), sets::inf) << j;
+  }
+  EXPECT_TRUE(sets::contains(r.box, Eigen::Vector3d(0.5, 0.25, -1)));
+}
