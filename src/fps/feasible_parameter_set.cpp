@@ -675,8 +675,8 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
 // reported the set unbounded, and on one with entries ~1e10 its objective's duals fell below
 // the reduced-cost tolerance and it stopped at a wrong vertex (PUI intervals of width 0 that
 // missed the truth, soundness campaign seeds 752, 4112, 4502, 9087, 9662). The scaled problem
-// is the same set exactly: a_tj d_j and dir_j / d_j are exact unless they leave the normal
-// range, and then that column keeps d_j = 1.
+// is the same set exactly: a_tj d_j and the scaled directions' dir_j d_j are exact unless they
+// leave the normal range, and then that column keeps d_j = 1.
 Eigen::VectorXd column_scales(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions) {
   const auto Phi = fps.regressors();
   const int p = fps.dimension();
@@ -691,7 +691,7 @@ Eigen::VectorXd column_scales(const FeasibleParameterSet& fps, const std::vector
     bool ok = true;
     for (Eigen::Index t = 0; ok && t < Phi.rows(); ++t)
       ok = exact(Phi(t, j).lower(), f) && exact(Phi(t, j).upper(), f);
-    for (std::size_t k = 0; ok && k < directions.size(); ++k) ok = exact(directions[k][j], 1 / f);
+    for (std::size_t k = 0; ok && k < directions.size(); ++k) ok = exact(directions[k][j], f);  // d^T theta = (D d)^T z
     if (ok) d[j] = f;
   }
   return d;
