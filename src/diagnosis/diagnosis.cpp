@@ -81,10 +81,12 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   d.outputs = exact.output_columns();
   const NominalFit nominal = calibrate_nominal({model, est, val, opt, exact, fast, exact_val.get(), say}, d);  // 1.
   // The calibrated values can have faster modes than the file's: a screening step that resolved
-  // the file's values may damp them or blow up on them (RK4 outside its stability region), so
-  // the step is checked again at the calibrated values and made finer if needed.
-  const int sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps,
-                                     opt.screening_substeps);
+  // the file's values may blow up on them (RK4 outside its stability region). Then the step is
+  // chosen again at the calibrated values, finer. (Not for a mere loss of precision: the screening
+  // optima are refined with the final substeps anyway, and Silverbox's screening would double.)
+  int sub = opt.screening_substeps;
+  if (!evaluate(fast, nominal.calibration.parameters).ok)
+    sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps, sub + 1);
   std::unique_ptr<Simulator> finer;
   if (sub > opt.screening_substeps) {
     say("the calibrated nominal needs a finer screening step: " + std::to_string(sub) + " RK4 substeps instead of " +
