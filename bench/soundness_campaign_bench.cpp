@@ -7,7 +7,7 @@
 //   ./build/bench/soundness_campaign_bench --seeds 1 500 --threads 2 --list-failures
 //
 // Exit code 1 if any false empty verdict or guaranteed miss occurred (so it can gate a run).
-// A fixed-seed slice runs in the test suite (tests/fps/soundness_campaign_test.cpp).
+// A fixed-seed slice runs in the test suite (tests/examples/bounded_error_regression_test.cpp).
 
 #include <algorithm>
 #include <array>

@@ -1,20 +1,12 @@
 // The one CSV reader of the library (sets/data/recording.hpp): the forms the apps accept, columns
-// given by name or number; and recordings from hostile files, CSV and MATLAB .mat. Sizes in a .mat
-// file are checked against the bytes really there before anything is allocated; every error is an
-// InputError naming the file and the line/column, byte offset or variable; bytes of the file are
-// escaped in messages.
+// given by name or number; and recordings from hostile CSV files: every error is an InputError
+// naming the file and the line/column; bytes of the file are escaped in messages. (The .mat reader:
+// tests/data/mat_file_test.cpp.)
 
 #include "sets/data/recording.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
-#include <zlib.h>
 
-#include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -85,52 +77,6 @@ using namespace sets;
 using sets::test::contains;
 using sets::test::input_error_of;
 
-namespace {
-
-// ---- a little writer of level 5 files (little endian), as in tests/fuzz/make_mat_seeds.py
-std::string u32(std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
-std::string pad8(std::string b) { return b + std::string((8 - b.size() % 8) % 8, '\0'); }
-std::string element(std::uint32_t type, const std::string& payload) { return u32(type) + u32(static_cast<std::uint32_t>(payload.size())) + pad8(payload); }
-std::string doubles(const std::vector<double>& v) { return std::string(reinterpret_cast<const char*>(v.data()), 8 * v.size()); }
-std::string matrix(const std::string& name, std::int32_t rows, std::int32_t cols, const std::string& real_part) {
-  std::string body = element(6, u32(6) + u32(0));  // array flags: mxDOUBLE
-  body += element(5, u32(static_cast<std::uint32_t>(rows)) + u32(static_cast<std::uint32_t>(cols)));
-  body += element(1, name) + real_part;
-  return u32(14) + u32(static_cast<std::uint32_t>(body.size())) + body;
-}
-std::string v5(const std::string& elements) {
-  std::string header = "MATLAB 5.0 MAT-file, sets test";
-  header.resize(116, ' ');
-  header += std::string(8, '\0') + std::string("\x00\x01IM", 4);
-  return header + elements;
-}
-std::string compressed(const std::string& element_bytes) {
-  uLongf n = compressBound(element_bytes.size());
-  std::string z(n, '\0');
-  compress(reinterpret_cast<Bytef*>(z.data()), &n, reinterpret_cast<const Bytef*>(element_bytes.data()), element_bytes.size());
-  z.resize(n);
-  return u32(15) + u32(static_cast<std::uint32_t>(n)) + z;
-}
-
-std::string temp_file(const std::string& bytes) {
-  static int count = 0;
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("sets_recording_test_" + std::to_string(::getpid()) + "_" + std::to_string(count++) + ".mat");
-  std::ofstream(path, std::ios::binary) << bytes;
-  return path.string();
-}
-
-std::string mat_error(const std::string& bytes) {
-  const std::string path = temp_file(bytes);
-  const std::string m = input_error_of([&] { read_mat(path); });
-  std::filesystem::remove(path);
-  return m;
-}
-
-std::string seed(const std::string& name) { return std::string(SETS_SOURCE_DIR) + "/tests/fuzz/corpus/mat/" + name; }
-
-}  // namespace
-
 TEST(Recording, CsvEscapesBinaryGarbageInMessages) {
   const std::string m = input_error_of([] { parse_csv("a,b\n1,\x1b[31mred\x07\n", "r.csv"); });
   EXPECT_TRUE(contains(m, "r.csv: line 2, column 2 (\"b\"): not a number: \"\\x1b[31mred\\x07\"")) << m;
@@ -147,65 +93,14 @@ TEST(Recording, CsvNumbersOutsideDoubleRangeAndDuplicateNames) {
                        "r.csv: line 1, column 3: the column name \"t\" is given twice"));
 }
 
-TEST(Recording, MatSeedsReadInBothByteOrdersCompressedOrNot) {
-  for (const char* name : {"v5_le.mat", "v5_be.mat", "v5_le_compressed.mat", "v5_be_compressed.mat", "v4_le.mat", "v4_be.mat"}) {
-    SCOPED_TRACE(name);
-    const Recording r = read_mat(seed(name));
-    ASSERT_EQ(r.rows(), 4);
-    EXPECT_EQ(r.column("t"), (std::vector<double>{0.0, 0.1, 0.2, 0.3}));
-    EXPECT_EQ(r.column("u"), (std::vector<double>{1, -2, 0, 3}));
-    EXPECT_EQ(r.column("y"), (std::vector<double>{1, -2, 0.5, 3}));
-    EXPECT_FALSE(r.has("gain"));  // a scalar
-    EXPECT_FALSE(r.has("z"));     // complex
-  }
-  for (const char* name : {"v5_le_skipped.mat", "v5_be_skipped.mat"}) {  // matrix, complex, char, cell
-    const Recording r = read_mat(seed(name));
-    EXPECT_EQ(r.names, (std::vector<std::string>{"t", "u"})) << name;
-  }
-  for (const char* name : {"v5_le_integers.mat", "v5_be_integers.mat"}) {
-    const Recording r = read_mat(seed(name));
-    ASSERT_EQ(r.names.size(), 8u) << name;
-    for (const auto& c : r.columns) EXPECT_EQ(c, (std::vector<double>{1, 2, 3})) << name;
-  }
+TEST(Recording, NanRowIsNamed) {
+  const auto msg = message_of([] { parse_csv("t,y\n0,1\n0.1,2\n0.2,nan\n", "r.csv"); });
+  EXPECT_NE(msg.find("r.csv"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("data row 3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\"y\""), std::string::npos) << msg;
 }
 
-TEST(Recording, MatSizesAreCheckedAgainstTheFileBeforeAllocating) {
-  const std::string data = element(9, doubles({1, 2, 3, 4}));
-  // A 1 x 2^31-1 vector with 32 bytes of data: matio asked for 16 GB here.
-  std::string m = mat_error(v5(matrix("x", 1, 0x7FFFFFFF, data)));
-  EXPECT_TRUE(contains(m, "byte 160: variable \"x\" has more than 134217728 elements")) << m;
-  m = mat_error(v5(matrix("x", 1, 100000000, data)));
-  EXPECT_TRUE(contains(m, "variable \"x\" has 100000000 elements but its real part holds 32 bytes")) << m;
-  m = mat_error(v5(matrix("x", -1, 4, data)));
-  EXPECT_TRUE(contains(m, "negative dimension -1")) << m;
-  // An element that claims more bytes than the file has.
-  std::string truncated = v5(matrix("x", 1, 4, data));
-  truncated.resize(truncated.size() - 9);
-  m = mat_error(truncated);
-  EXPECT_TRUE(contains(m, "byte 136: data element needs")) << m;
-  // A compressed variable whose inner element claims 2 GB, and one whose stream is cut short.
-  m = mat_error(v5(compressed(u32(14) + u32(0x80000000u) + std::string(64, '\0'))));
-  EXPECT_TRUE(contains(m, "compressed variable at byte 128, inflated byte 0: the variable inflates to 2147483648 bytes")) << m;
-  const std::string stream = compressed(matrix("x", 1, 4, data)).substr(8, 20);
-  m = mat_error(v5(u32(15) + u32(20) + stream));
-  EXPECT_TRUE(contains(m, "compressed variable at byte 128, inflated byte")) << m;
-}
-
-TEST(Recording, MatLevel4SizesAndUnknownFormats) {
-  // Level 4: 2^30 x 2^30 doubles in a 40-byte file.
-  std::string v4 = u32(0) + u32(1u << 30) + u32(1u << 30) + u32(0) + u32(2) + std::string("x\0", 2) + doubles({1, 2});
-  std::string m = mat_error(v4);
-  EXPECT_TRUE(contains(m, "variable \"x\" is 1073741824 x 1073741824 but the file has only 16 bytes left")) << m;
-  EXPECT_TRUE(contains(mat_error("hello"), "not a MATLAB .mat file (too short)"));
-  EXPECT_TRUE(contains(mat_error(std::string(300, '\x5a')), "byte 0: not a MATLAB .mat file"));
-  std::string v73 = v5("");
-  v73[124] = 0;
-  v73[125] = 2;
-  EXPECT_TRUE(contains(mat_error(v73 + std::string(600, '\0')), "a v7.3 .mat header but no HDF5 data at byte 512"));
-}
-
-TEST(Recording, MatNamesAndValuesInMessagesAreEscaped) {
-  const std::string m = mat_error(v5(matrix("\x1b[2J", 1, 2, element(9, doubles({1, NAN})))));
-  EXPECT_TRUE(contains(m, "variable \"\\x1b[2J\", sample 2: NaN or infinite value")) << m;
-  EXPECT_FALSE(sets::test::has_raw_control_bytes(m)) << m;
+TEST(Recording, BadNumberNamesLineAndColumn) {
+  const auto msg = message_of([] { parse_csv("t,y\n0,1\n0.1,2x\n", "r.csv"); });
+  EXPECT_NE(msg.find("line 3, column 2"), std::string::npos) << msg;
 }

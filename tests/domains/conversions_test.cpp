@@ -2,7 +2,7 @@
 // (zonotope -> H, zonotope -> V, H -> V -> H, polygon vertices of each) has the same support
 // function up to rounding, exact conversions of a box are exact, and outer approximations
 // contain what they approximate. (Each conversion's own properties against CGAL are tested in
-// zonotope_test, polytope_test and ellipsoid_test.)
+// zonotope_test, polytope_cgal_test and ellipsoid_test.)
 
 #include <gtest/gtest.h>
 

@@ -15,6 +15,11 @@ using sets::test::input_error_of;
 
 namespace {
 
+const char* kDecay = R"json({"name": "decay", "sample_time": 0.1, "inputs": {"u": "u"},
+  "parameters": {"a": 2.0}, "states": {"x": 1.0},
+  "sampled": {"us": "u + 0*prev(x, 1)", "lag": "prev(x, 2)"},
+  "derivatives": {"x": "-a*x + us"}, "outputs": {"x": "y", "lag": "y"}})json";
+
 std::string model_with(const std::string& states, const std::string& derivatives) {
   return R"({"sample_time": 0.1, "states": )" + states + R"(, "derivatives": )" + derivatives +
          R"(, "outputs": {"x": "y"}})";
@@ -56,4 +61,23 @@ TEST(ModelFile, BytesOfTheFileAreEscapedInMessages) {
   const std::string bad_json = input_error_of([] { parse_model("{\"name\": \"\x1b[31m", "m.json"); });
   EXPECT_FALSE(sets::test::has_raw_control_bytes(bad_json)) << bad_json;
   EXPECT_TRUE(contains(bad_json, "m.json: malformed JSON at line 1")) << bad_json;
+}
+
+TEST(ModelFile, MalformedJsonNamesLineAndColumn) {
+  const std::string text = "{\n  \"name\": \"x\",\n  \"time\" \"t\"\n}";
+  const auto msg = input_error_of([&] { parse_model(text, "m.json"); });
+  EXPECT_NE(msg.find("m.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("line 3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("line 3, column 10"), std::string::npos) << msg;  // start of the offending token
+}
+
+TEST(ModelFile, RoundTripKeepsEverything) {
+  const sets::ModelFile m = parse_model(kDecay, "decay");
+  const sets::ModelFile back = parse_model(sets::to_json_text(m), "back");
+  EXPECT_EQ(back.sampled, m.sampled);
+  EXPECT_EQ(back.derivatives, m.derivatives);
+  EXPECT_EQ(back.outputs, m.outputs);
+  ASSERT_EQ(back.parameters.size(), 1u);
+  EXPECT_EQ(back.parameters[0].value, 2.0);
+  ASSERT_TRUE(back.sample_time.has_value());
 }

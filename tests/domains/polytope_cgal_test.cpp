@@ -1,52 +1,28 @@
-// H- and V-polytopes: agreement with CGAL's exact arithmetic in 2-D/3-D (containment, vertex
-// sets, hulls), certified boxes, and the degenerate cases (empty, unbounded, flat,
-// near-parallel constraints, above 3-D).
+// Conversions between H- and V-polytopes through CGAL (src/domains/polytope_cgal.cpp): agreement
+// with CGAL's exact arithmetic in 2-D/3-D (vertex sets, hulls, facets), certified boxes, and the
+// degenerate cases (empty, unbounded, flat, near-parallel constraints, above 3-D).
 
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 #include <rapidcheck/gtest.h>
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Gmpq.h>
-#include <CGAL/convex_hull_2.h>
-#include <CGAL/Polygon_2_algorithms.h>
-
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "sets/core/error.hpp"
 #include "sets/domains/conversions.hpp"
 #include "sets/domains/hpolytope.hpp"
 #include "sets/domains/vpolytope.hpp"
 #include "sets/domains/zonotope.hpp"
+#include "support/random_matrices.hpp"
 
 namespace {
 
 using sets::BoolInterval;
 using sets::HPolytope;
 using sets::VPolytope;
-using Q = CGAL::Gmpq;
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
-
-struct Rng {
-  std::mt19937_64 g;
-  explicit Rng(std::uint64_t seed) : g(seed) {}
-  double u(double lo = -1, double hi = 1) { return std::uniform_real_distribution<double>(lo, hi)(g); }
-  Eigen::MatrixXd mat(int r, int c) { return Eigen::MatrixXd::NullaryExpr(r, c, [&] { return u(); }); }
-};
-
-// Exact sign of max_i (a_i^T x - b_i): -1 strictly inside, 0 on the boundary, +1 outside.
-int exact_side(const HPolytope& P, const Eigen::VectorXd& x) {
-  int worst = -1;
-  for (int i = 0; i < P.num_constraints(); ++i) {
-    Q s = -Q(P.b()[i]);
-    for (int j = 0; j < P.dimension(); ++j) s += Q(P.A()(i, j)) * Q(x[j]);
-    worst = std::max(worst, s > 0 ? 1 : (s == 0 ? 0 : -1));
-  }
-  return worst;
-}
+using sets::test::Rng;
 
 HPolytope unit_box(int n) {
   return sets::to_hpolytope(sets::make_box(-Eigen::VectorXd::Ones(n), Eigen::VectorXd::Ones(n)));
@@ -67,40 +43,6 @@ bool same_point_sets(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double 
 }
 
 }  // namespace
-
-RC_GTEST_PROP(Polytope, HContainmentAgreesWithExactArithmetic, ()) {
-  const int n = *rc::gen::inRange(2, 4);
-  Rng r(*rc::gen::arbitrary<std::uint64_t>());
-  // Dyadic data (multiples of 1/4) put many points exactly on a facet; generic data test the
-  // rest. Either way a decided answer must match the exact rational sign.
-  const bool dyadic = *rc::gen::arbitrary<bool>();
-  auto q = [&](double v) { return dyadic ? std::round(4 * v) / 4 : v; };
-  Eigen::MatrixXd A = r.mat(8, n).unaryExpr(q);
-  Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(8, [&] { return q(r.u(0.25, 1)); });
-  const HPolytope P(A, b);
-  int boundary = 0;
-  for (int s = 0; s < 50; ++s) {
-    const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(n, [&] { return q(r.u()); });
-    const auto res = sets::contains(P, x);
-    const int side = exact_side(P, x);
-    boundary += side == 0;
-    if (res == BoolInterval::yes) RC_ASSERT(side <= 0);
-    if (res == BoolInterval::no) RC_ASSERT(side > 0);
-    if (dyadic) RC_ASSERT(res != BoolInterval::unknown);  // exact data: always decided
-  }
-  RC_TAG(boundary > 0 ? "hit a facet exactly" : "no boundary points");
-}
-
-TEST(Polytope, BoundaryPointsAreInsideOrUnknown) {
-  HPolytope P = unit_box(2);
-  EXPECT_EQ(sets::contains(P, Eigen::Vector2d(1, 1)), BoolInterval::yes);  // exact corner
-  Eigen::MatrixXd A(1, 2);
-  A << 0.1, 0.2;  // neither coefficient is a double-exact decimal
-  const HPolytope H(A, Eigen::VectorXd::Constant(1, 0.3));
-  // Exactly, 0.1 + 0.2 > 0.3 in doubles by 2.8e-17: outside, but within rounding of the facet.
-  ASSERT_GT(exact_side(H, Eigen::Vector2d(1, 1)), 0);
-  EXPECT_NE(sets::contains(H, Eigen::Vector2d(1, 1)), BoolInterval::yes);
-}
 
 TEST(Polytope, EmptyUnboundedAndFlatPolytopes) {
   // Empty: x <= 0 and x >= 1.
@@ -159,25 +101,6 @@ RC_GTEST_PROP(Polytope, VertexEnumerationAgreesWithExactHull, ()) {
   }
 }
 
-RC_GTEST_PROP(Polytope, VContainmentAgreesWithCgal2D, ()) {
-  Rng r(*rc::gen::arbitrary<std::uint64_t>());
-  // Integer points, so edge midpoints are exact and land exactly on the boundary.
-  Eigen::MatrixXd P(2, 8);
-  for (int k = 0; k < 8; ++k) P.col(k) << std::round(10 * r.u()), std::round(10 * r.u());
-  const VPolytope V(P);
-  std::vector<K::Point_2> pts, hull;
-  for (int k = 0; k < 8; ++k) pts.emplace_back(P(0, k), P(1, k));
-  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
-  for (int s = 0; s < 20; ++s) {
-    Eigen::Vector2d x(std::round(10 * r.u()) / 2, std::round(10 * r.u()) / 2);
-    if (s < 4) x = 0.5 * (P.col(s) + P.col(s + 1));
-    const auto side = CGAL::bounded_side_2(hull.begin(), hull.end(), K::Point_2(x[0], x[1]));
-    const bool inside = hull.size() >= 3 ? side != CGAL::ON_UNBOUNDED_SIDE
-                                         : sets::contains(V, x) == BoolInterval::yes;
-    RC_ASSERT(sets::contains(V, x) == (inside ? BoolInterval::yes : BoolInterval::no));
-  }
-}
-
 TEST(Polytope, NearParallelConstraints) {
   // x <= 1 and x + 1e-13 y <= 1 meet at an angle of 1e-13: with x >= -1 they pin y <= 2e13,
   // a vertex far away but well defined, which the exact duality finds.
@@ -204,35 +127,6 @@ TEST(Polytope, NearParallelConstraints) {
   EXPECT_EQ(R.num_constraints(), 4);
   const auto box = sets::outer_box(P);
   EXPECT_GE(box[1].upper(), 2e13);
-}
-
-TEST(Polytope, RedundancyChebyshevAndIntersection) {
-  HPolytope P = unit_box(2);
-  Eigen::MatrixXd A(3, 2);
-  A << 1, 1, 2, 0, 1, 0;  // x + y <= 5 (redundant), 2x <= 2 (duplicate facet), x <= 1 (copy)
-  const HPolytope Q = sets::intersect(P, HPolytope(A, Eigen::Vector3d(5, 2, 1)));
-  EXPECT_EQ(Q.num_constraints(), 7);
-  const HPolytope R = sets::remove_redundant(Q);
-  EXPECT_EQ(R.num_constraints(), 4);
-  const auto ball = sets::chebyshev_ball(sets::to_hpolytope(sets::make_box(Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 4))));
-  EXPECT_NEAR(ball.radius, 1.0, 1e-9);
-  EXPECT_NEAR(ball.center[0], 1.0, 1e-9);
-}
-
-RC_GTEST_PROP(Polytope, LinearMapContainsTheImage, ()) {
-  const int n = *rc::gen::inRange(2, 4);
-  Rng r(*rc::gen::arbitrary<std::uint64_t>());
-  const VPolytope V(r.mat(n, 12));
-  const HPolytope H = sets::to_hpolytope(V);
-  Eigen::MatrixXd M = r.mat(n, n) + 2 * Eigen::MatrixXd::Identity(n, n);
-  const HPolytope MH = sets::linear_map(M, H);
-  const VPolytope hull = sets::convex_hull(V);
-  for (int k = 0; k < hull.num_points(); ++k)
-    RC_ASSERT(sets::contains(MH, M * hull.points().col(k)) != BoolInterval::no);
-  // Tight: every facet is touched by a mapped vertex (up to rounding).
-  const Eigen::MatrixXd img = MH.A() * (M * hull.points());
-  for (int i = 0; i < MH.num_constraints(); ++i)
-    RC_ASSERT(MH.b()[i] - img.row(i).maxCoeff() <= 1e-8 * (1 + std::abs(MH.b()[i])));
 }
 
 RC_GTEST_PROP(Polytope, ZonotopeFacetsAgreeWithExactHull3D, ()) {

@@ -1,5 +1,7 @@
-// Support and outer box of UNBOUNDED H-polytopes: finite (and certified) in the directions in
-// which the polytope is bounded, +inf in the others. Checked in exact rational arithmetic.
+// H-polytopes (src/domains/hpolytope.cpp): containment against exact rational arithmetic,
+// redundancy, Chebyshev ball, intersection and linear maps; support and outer box of UNBOUNDED
+// H-polytopes: finite (and certified) in the directions in which the polytope is bounded, +inf in
+// the others. Checked in exact rational arithmetic.
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -7,10 +9,14 @@
 #include <CGAL/Gmpq.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "sets/domains/hpolytope.hpp"
+#include "sets/domains/conversions.hpp"
+#include "sets/domains/vpolytope.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "support/random_matrices.hpp"
 
 namespace {
 
@@ -109,4 +115,90 @@ RC_GTEST_PROP(HPolytopeSupport, UnboundedPolytopeBoundedDirections, ()) {
   }
   RC_CLASSIFY(finite == 4, "all bounded directions certified");
   RC_ASSERT(finite >= 1);
+}
+
+namespace {
+
+using sets::BoolInterval;
+using sets::VPolytope;
+using sets::test::Rng;
+
+// Exact sign of max_i (a_i^T x - b_i): -1 strictly inside, 0 on the boundary, +1 outside.
+int exact_side(const HPolytope& P, const Eigen::VectorXd& x) {
+  int worst = -1;
+  for (int i = 0; i < P.num_constraints(); ++i) {
+    Q s = -Q(P.b()[i]);
+    for (int j = 0; j < P.dimension(); ++j) s += Q(P.A()(i, j)) * Q(x[j]);
+    worst = std::max(worst, s > 0 ? 1 : (s == 0 ? 0 : -1));
+  }
+  return worst;
+}
+
+HPolytope unit_box(int n) {
+  return sets::to_hpolytope(sets::make_box(-Eigen::VectorXd::Ones(n), Eigen::VectorXd::Ones(n)));
+}
+
+}  // namespace
+
+RC_GTEST_PROP(Polytope, HContainmentAgreesWithExactArithmetic, ()) {
+  const int n = *rc::gen::inRange(2, 4);
+  Rng r(*rc::gen::arbitrary<std::uint64_t>());
+  // Dyadic data (multiples of 1/4) put many points exactly on a facet; generic data test the
+  // rest. Either way a decided answer must match the exact rational sign.
+  const bool dyadic = *rc::gen::arbitrary<bool>();
+  auto q = [&](double v) { return dyadic ? std::round(4 * v) / 4 : v; };
+  Eigen::MatrixXd A = r.mat(8, n).unaryExpr(q);
+  Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(8, [&] { return q(r.u(0.25, 1)); });
+  const HPolytope P(A, b);
+  int boundary = 0;
+  for (int s = 0; s < 50; ++s) {
+    const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(n, [&] { return q(r.u()); });
+    const auto res = sets::contains(P, x);
+    const int side = exact_side(P, x);
+    boundary += side == 0;
+    if (res == BoolInterval::yes) RC_ASSERT(side <= 0);
+    if (res == BoolInterval::no) RC_ASSERT(side > 0);
+    if (dyadic) RC_ASSERT(res != BoolInterval::unknown);  // exact data: always decided
+  }
+  RC_TAG(boundary > 0 ? "hit a facet exactly" : "no boundary points");
+}
+
+TEST(Polytope, BoundaryPointsAreInsideOrUnknown) {
+  HPolytope P = unit_box(2);
+  EXPECT_EQ(sets::contains(P, Eigen::Vector2d(1, 1)), BoolInterval::yes);  // exact corner
+  Eigen::MatrixXd A(1, 2);
+  A << 0.1, 0.2;  // neither coefficient is a double-exact decimal
+  const HPolytope H(A, Eigen::VectorXd::Constant(1, 0.3));
+  // Exactly, 0.1 + 0.2 > 0.3 in doubles by 2.8e-17: outside, but within rounding of the facet.
+  ASSERT_GT(exact_side(H, Eigen::Vector2d(1, 1)), 0);
+  EXPECT_NE(sets::contains(H, Eigen::Vector2d(1, 1)), BoolInterval::yes);
+}
+
+TEST(Polytope, RedundancyChebyshevAndIntersection) {
+  HPolytope P = unit_box(2);
+  Eigen::MatrixXd A(3, 2);
+  A << 1, 1, 2, 0, 1, 0;  // x + y <= 5 (redundant), 2x <= 2 (duplicate facet), x <= 1 (copy)
+  const HPolytope Q = sets::intersect(P, HPolytope(A, Eigen::Vector3d(5, 2, 1)));
+  EXPECT_EQ(Q.num_constraints(), 7);
+  const HPolytope R = sets::remove_redundant(Q);
+  EXPECT_EQ(R.num_constraints(), 4);
+  const auto ball = sets::chebyshev_ball(sets::to_hpolytope(sets::make_box(Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 4))));
+  EXPECT_NEAR(ball.radius, 1.0, 1e-9);
+  EXPECT_NEAR(ball.center[0], 1.0, 1e-9);
+}
+
+RC_GTEST_PROP(Polytope, LinearMapContainsTheImage, ()) {
+  const int n = *rc::gen::inRange(2, 4);
+  Rng r(*rc::gen::arbitrary<std::uint64_t>());
+  const VPolytope V(r.mat(n, 12));
+  const HPolytope H = sets::to_hpolytope(V);
+  Eigen::MatrixXd M = r.mat(n, n) + 2 * Eigen::MatrixXd::Identity(n, n);
+  const HPolytope MH = sets::linear_map(M, H);
+  const VPolytope hull = sets::convex_hull(V);
+  for (int k = 0; k < hull.num_points(); ++k)
+    RC_ASSERT(sets::contains(MH, M * hull.points().col(k)) != BoolInterval::no);
+  // Tight: every facet is touched by a mapped vertex (up to rounding).
+  const Eigen::MatrixXd img = MH.A() * (M * hull.points());
+  for (int i = 0; i < MH.num_constraints(); ++i)
+    RC_ASSERT(MH.b()[i] - img.row(i).maxCoeff() <= 1e-8 * (1 + std::abs(MH.b()[i])));
 }

@@ -1,0 +1,101 @@
+// The simulator of model files (sets/data/simulation.hpp): errors naming the symbol, column, row or
+// time; RK4 against the closed form; prev() and sampled (held) signals.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sets/data/recording.hpp"
+#include "sets/data/simulation.hpp"
+#include "sets/models/model_file.hpp"
+
+using namespace sets;
+
+namespace {
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+const char* kDecay = R"json({"name": "decay", "sample_time": 0.1, "inputs": {"u": "u"},
+  "parameters": {"a": 2.0}, "states": {"x": 1.0},
+  "sampled": {"us": "u + 0*prev(x, 1)", "lag": "prev(x, 2)"},
+  "derivatives": {"x": "-a*x + us"}, "outputs": {"x": "y", "lag": "y"}})json";
+
+Recording columns(int n, double u) {
+  Recording r;
+  r.source = "test";
+  r.add("u", std::vector<double>(static_cast<std::size_t>(n), u));
+  r.add("y", std::vector<double>(static_cast<std::size_t>(n), 0.0));
+  return r;
+}
+
+}  // namespace
+
+TEST(ModelFile, UnknownSymbolIsNamed) {
+  ModelFile m = parse_model(kDecay, "decay.json");
+  *m.derivative("x") = "-a*x + us*gain";
+  const auto msg = message_of([&] { Simulator s(m, columns(10, 0)); });
+  EXPECT_NE(msg.find("unknown symbol \"gain\""), std::string::npos) << msg;
+  EXPECT_NE(msg.find("derivatives.x"), std::string::npos) << msg;
+}
+
+TEST(Recording, MissingColumnIsNamed) {
+  ModelFile m = parse_model(kDecay, "decay.json");
+  m.inputs = {{"u", "force"}};
+  const auto msg = message_of([&] { Simulator s(m, columns(10, 0)); });
+  EXPECT_NE(msg.find("missing column \"force\""), std::string::npos) << msg;
+}
+
+TEST(Simulation, TimeMustIncrease) {
+  ModelFile m = parse_model(kDecay, "decay.json");
+  m.sample_time.reset();
+  m.time_column = "t";
+  Recording r = parse_csv("t,u,y\n0,0,0\n0.1,0,0\n0.1,0,0\n0.3,0,0\n", "r.csv");
+  const auto msg = message_of([&] { Simulator s(m, r); });
+  EXPECT_NE(msg.find("does not increase at data row 3"), std::string::npos) << msg;
+}
+
+TEST(Simulation, BlowUpNamesTheTime) {
+  ModelFile m = parse_model(R"json({"sample_time": 0.1, "states": {"x": 1.0},
+    "derivatives": {"x": "x*x"}, "outputs": {"x": "y"}})json", "blow.json");
+  Simulator s(m, columns(30, 0));
+  const auto msg = message_of([&] { s.simulate(s.parameter_values()); });
+  // x' = x^2, x(0) = 1 escapes at t = 1.
+  EXPECT_NE(msg.find("blew up at t = "), std::string::npos) << msg;
+  const double t = std::stod(msg.substr(msg.find("t = ") + 4));
+  EXPECT_NEAR(t, 1.0, 0.05);
+}
+
+TEST(Simulation, Rk4MatchesExponentialAndPrevHoldsPastSamples) {
+  const ModelFile m = parse_model(kDecay, "decay.json");
+  Simulator s(m, columns(21, 0.0));
+  const auto r = s.simulate(s.parameter_values());
+  const Eigen::VectorXd x = r.series("x"), lag = r.series("lag");
+  for (int k = 0; k <= 20; ++k) EXPECT_NEAR(x[k], std::exp(-2.0 * 0.1 * k), 1e-9);
+  EXPECT_DOUBLE_EQ(lag[0], x[0]);  // no earlier sample: the first one
+  EXPECT_DOUBLE_EQ(lag[1], x[0]);
+  for (int k = 2; k <= 20; ++k) EXPECT_DOUBLE_EQ(lag[k], x[k - 2]);
+}
+
+TEST(Simulation, SampledInputIsHeldOverTheSample) {
+  // x' = us with us held: x grows by us*Ts per sample exactly.
+  const ModelFile m = parse_model(R"json({"sample_time": 0.5, "inputs": {"u": "u"}, "states": {"x": 0.0},
+    "sampled": {"us": "u"}, "derivatives": {"x": "us"}, "outputs": {"x": "y"}})json", "hold.json");
+  Recording r;
+  r.add("u", {1, 3, -2, 0});
+  r.add("y", {0, 0, 0, 0});
+  Simulator s(m, r);
+  const Eigen::VectorXd x = s.simulate(s.parameter_values()).series("x");
+  EXPECT_NEAR(x[1], 0.5, 1e-12);
+  EXPECT_NEAR(x[2], 2.0, 1e-12);
+  EXPECT_NEAR(x[3], 1.0, 1e-12);
+}
