@@ -5,6 +5,7 @@
 //
 //   ./build/bench/soundness_campaign_bench                       # seeds 1..10000
 //   ./build/bench/soundness_campaign_bench --seeds 1 500 --threads 2 --list-failures
+//   ./build/bench/soundness_campaign_bench --kind badly-scaled --list-failures   # one kind only
 //
 // Exit code 1 if any false empty verdict or guaranteed miss occurred (so it can gate a run).
 // A fixed-seed slice runs in the test suite (tests/examples/bounded_error_regression_test.cpp).
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -56,7 +58,8 @@ struct Tally {
 
 [[noreturn]] void usage(const char* msg) {
   std::cerr << "soundness_campaign_bench: " << msg
-            << "\nusage: soundness_campaign_bench [--seeds FIRST LAST] [--threads T] [--list-failures]\n";
+            << "\nusage: soundness_campaign_bench [--seeds FIRST LAST] [--threads T] [--kind KIND] [--list-failures]\n"
+            << "  KIND: normal, badly-scaled, near-collinear, errors-in-variables, tiny-n (default: all)\n";
   std::exit(1);
 }
 
@@ -72,12 +75,22 @@ unsigned long parse_count(const char* s, const char* flag) {
 int main(int argc, char** argv) {
   unsigned long first = 1, last = 10000, threads = 1;
   bool list = false;
+  int kind = -1;  // all kinds
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds") && i + 2 < argc) {
       first = parse_count(argv[++i], "--seeds");
       last = parse_count(argv[++i], "--seeds");
     } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = parse_count(argv[++i], "--threads");
+    } else if (!std::strcmp(argv[i], "--kind") && i + 1 < argc) {
+      const std::string want = argv[++i];
+      for (int k = 0; k < sets::regression_kind_count; ++k) {
+        std::string name = sets::to_string(static_cast<sets::RegressionKind>(k));
+        std::replace(name.begin(), name.end(), ' ', '-');
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (name == want) kind = k;
+      }
+      if (kind < 0) usage(("--kind: unknown kind '" + want + "'").c_str());
     } else if (!std::strcmp(argv[i], "--list-failures")) {
       list = true;
     } else {
@@ -85,12 +98,15 @@ int main(int argc, char** argv) {
     }
   }
   if (last < first) usage("--seeds: LAST < FIRST");
-  std::vector<sets::SoundnessOutcome> out(last - first + 1);
-  std::atomic<unsigned long> next{first};
+  std::vector<unsigned long> seeds;
+  for (unsigned long s = first; s <= last; ++s)
+    if (kind < 0 || static_cast<int>(sets::regression_kind_of_seed(s)) == kind) seeds.push_back(s);
+  std::vector<sets::SoundnessOutcome> out(seeds.size());
+  std::atomic<std::size_t> next{0};
   std::atomic<unsigned long> done{0};
   sets::run_worker_threads(static_cast<int>(threads), [&] {
-    for (unsigned long seed; (seed = next++) <= last;) {
-      out[seed - first] = sets::run_soundness_problem(sets::bounded_error_regression(seed));
+    for (std::size_t i; (i = next++) < seeds.size();) {
+      out[i] = sets::run_soundness_problem(sets::bounded_error_regression(seeds[i]));
       const unsigned long k = ++done;
       if (k % 1000 == 0) std::cerr << "  " << k << " / " << out.size() << " problems\n";
     }
@@ -106,7 +122,8 @@ int main(int argc, char** argv) {
                 << (o.guaranteed ? ", guaranteed" : ", not guaranteed") << (o.theta_in_box ? "" : ", theta outside")
                 << (o.numerical_error ? ", NumericalError: " + o.error : "") << '\n';
   }
-  std::printf("\nseeds %lu..%lu, %lu thread(s)\n", first, last, threads);
+  std::printf("\nseeds %lu..%lu%s%s, %lu thread(s)\n", first, last, kind < 0 ? "" : ", kind ",
+              kind < 0 ? "" : sets::to_string(static_cast<sets::RegressionKind>(kind)), threads);
   std::printf("%-20s %8s %7s %8s %7s %8s %8s %8s %7s %8s %9s %9s\n", "kind", "problems", "false", "theta out",
               "theta", "unknown", "certif.", "Numeric.", "not", "infinite", "median", "total");
   std::printf("%-20s %8s %7s %8s %7s %8s %8s %8s %7s %8s %9s %9s\n", "", "", "empty", "guarant.", "out",

@@ -430,23 +430,17 @@ std::vector<Orthant> all_orthants(int p) {
 namespace {
 
 // PUIs and, from the same LPs, bounds on max d^T theta for each direction (`maxima`): the
-// maximum over the orthant pieces that pui() visits.
-PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
-                  const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima, const char* what) {
+// maximum over the orthant pieces that pui() visits. `fps` is column-scaled (see explore()).
+PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& options,
+                         const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima) {
   const int p = fps.dimension();
-  if (fps.size() < p)
-    throw InputError(std::string(what) + ": " + std::to_string(fps.size()) + " samples for " + std::to_string(p) +
-                     " parameters: need at least as many samples as parameters");
-  for (const auto& d : directions)
-    if (d.size() != p)
-      throw InputError(std::string(what) + ": a direction has " + std::to_string(d.size()) + " entries, expected " +
-                       std::to_string(p));
   maxima.assign(directions.size(), -inf);
   PuiResult result;
   result.lower_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
   result.upper_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
   bool any_feasible = false;  // some orthant gave floating-point LP points
   bool have_box = false;      // some orthant contributed to result.box
+  bool have_unreliable = false;
   bool all_certified = true;
   int unknown_orthants = 0, empty_orthants = 0;
 
@@ -463,6 +457,11 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
     if (oc.status == OrthantStatus::empty) return;
     result.box = have_box ? hull(result.box, oc.box) : oc.box;
     have_box = true;
+    const IntervalVector estimate = oc.status == OrthantStatus::feasible
+                                        ? make_box(oc.float_lo.cwiseMin(oc.float_hi), oc.float_hi.cwiseMax(oc.float_lo))
+                                        : oc.box;
+    result.unreliable_box = have_unreliable ? hull(result.unreliable_box, estimate) : estimate;
+    have_unreliable = true;
     if (oc.status != OrthantStatus::feasible) return;
     for (std::size_t k = 0; k < directions.size(); ++k) maxima[k] = std::max(maxima[k], oc.maxima[k]);
     all_certified = all_certified && (oc.certified || !options.safe);
@@ -502,7 +501,8 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
       const double tol = options.zero_tolerance * scale;
       for (int j = 0; j < p; ++j) {
         if (s[static_cast<std::size_t>(j)] == 0) continue;  // free: no face at theta_j = 0
-        const bool touches = oc.status == OrthantStatus::unknown ||
+        // An uncertified extent is an estimate: its box reaches the face, so may the set.
+        const bool touches = oc.status == OrthantStatus::unknown || (options.safe && !oc.certified) ||
                              (s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol);
         if (!touches) continue;
         Orthant next = s;
@@ -554,9 +554,76 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
     return result;
   }
   if (!have_box) result.box = orthant_box({}, p);  // nothing searched could bound the rest
+  if (!have_unreliable) result.unreliable_box = result.box;
   result.guaranteed = options.safe && all_certified;
   result.central = midpoint(result.box);
   return result;
+}
+
+// Column scaling by powers of 2 (exact): theta_j = d_j z_j with d_j = 2^-e_j, 2^e_j about the
+// largest |regressor| of column j, so every column of the LP has entries of size ~1. GLPK's
+// tolerances are absolute: on a column with entries ~1e-10 it took pivots for zero and
+// reported the set unbounded, and on one with entries ~1e10 its objective's duals fell below
+// the reduced-cost tolerance and it stopped at a wrong vertex (PUI intervals of width 0 that
+// missed the truth, soundness campaign seeds 752, 4112, 4502, 9087, 9662). The scaled problem
+// is the same set exactly: a_tj d_j and dir_j / d_j are exact unless they leave the normal
+// range, and then that column keeps d_j = 1.
+Eigen::VectorXd column_scales(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions) {
+  const auto Phi = fps.regressors();
+  const int p = fps.dimension();
+  Eigen::VectorXd d = Eigen::VectorXd::Ones(p);
+  const auto exact = [](double a, double f) { return a == 0 || std::isnormal(a * f); };
+  for (int j = 0; j < p; ++j) {
+    double big = 0;
+    for (Eigen::Index t = 0; t < Phi.rows(); ++t)
+      big = std::max({big, std::abs(Phi(t, j).lower()), std::abs(Phi(t, j).upper())});
+    if (!(big > 0) || !std::isfinite(big)) continue;
+    const double f = std::ldexp(1.0, -std::ilogb(big));
+    bool ok = true;
+    for (Eigen::Index t = 0; ok && t < Phi.rows(); ++t)
+      ok = exact(Phi(t, j).lower(), f) && exact(Phi(t, j).upper(), f);
+    for (std::size_t k = 0; ok && k < directions.size(); ++k) ok = exact(directions[k][j], 1 / f);
+    if (ok) d[j] = f;
+  }
+  return d;
+}
+
+// theta = D z for a box in z (outward: the products are exact unless they overflow or
+// underflow, and then interval multiplication rounds outward).
+IntervalVector unscale(const IntervalVector& z, const Eigen::VectorXd& d) {
+  IntervalVector x(z.size());
+  for (Eigen::Index j = 0; j < z.size(); ++j) x[j] = z[j] * Interval(d[j]);
+  return x;
+}
+
+PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
+                  const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima, const char* what) {
+  const int p = fps.dimension();
+  if (fps.size() < p)
+    throw InputError(std::string(what) + ": " + std::to_string(fps.size()) + " samples for " + std::to_string(p) +
+                     " parameters: need at least as many samples as parameters");
+  for (const auto& d : directions)
+    if (d.size() != p)
+      throw InputError(std::string(what) + ": a direction has " + std::to_string(d.size()) + " entries, expected " +
+                       std::to_string(p));
+  const Eigen::VectorXd d = column_scales(fps, directions);
+  if ((d.array() == 1).all()) return explore_scaled(fps, options, directions, maxima);
+  IntervalMatrix Phi = fps.regressors();
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t)
+    for (int j = 0; j < p; ++j) Phi(t, j) = Interval(Phi(t, j).lower() * d[j], Phi(t, j).upper() * d[j]);
+  std::vector<Eigen::VectorXd> scaled_directions;  // d^T theta = (D d)^T z
+  for (const auto& dir : directions) scaled_directions.push_back(dir.cwiseProduct(d));
+  PuiResult r = explore_scaled(FeasibleParameterSet::from_interval_data(Phi, fps.outputs()), options,
+                               scaled_directions, maxima);
+  if (r.empty()) return r;
+  r.box = unscale(r.box, d);
+  r.unreliable_box = unscale(r.unreliable_box, d);
+  r.central = midpoint(r.box);
+  for (OrthantReport& o : r.orthants)
+    if (o.box.size() == p) o.box = unscale(o.box, d);
+  r.lower_points = d.asDiagonal() * r.lower_points;
+  r.upper_points = d.asDiagonal() * r.upper_points;
+  return r;
 }
 
 }  // namespace

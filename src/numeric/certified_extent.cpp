@@ -114,7 +114,12 @@ Extent certified_extent(LinearProgram& lp, const SolveOverSet& solve, const std:
     for (const auto& d : directions) e.maxima.push_back(maximise(d));
     return e;
   }
-  e.maxima.assign(directions.size(), inf);  // nothing certified: +inf is still a bound
+  // Nothing certified: +inf is still a bound, and so are the set's own variable bounds. The
+  // floating-point extent stays in float_lo/float_hi, as an estimate only (it can miss the set:
+  // seen on badly scaled regressions, width-0 intervals off by GLPK's tolerance).
+  e.maxima.assign(directions.size(), inf);
+  e.lo = own_lo;
+  e.hi = own_hi;
   return e;
 }
 

@@ -8,7 +8,8 @@
 // coordinate bound over C ∩ X lies strictly inside the artificial faces of X, then C ⊂ X (a
 // point of C outside X would put a point of C on an artificial face), and every safe bound over
 // C ∩ X — coordinates and any further direction — holds for C itself. X is tried with growing
-// margins; if none certifies, the answer is the floating-point extent, marked uncertified.
+// margins; if none certifies, the answer is the set's own variable bounds (often infinite),
+// marked uncertified, and the floating-point extent is kept apart as an estimate.
 
 #include <Eigen/Core>
 
@@ -24,7 +25,7 @@ enum class ExtentStatus { feasible, empty, unknown };
 struct Extent {
   ExtentStatus status = ExtentStatus::unknown;
   Eigen::VectorXd float_lo, float_hi;         // phase-1 floating-point extremes (+-inf: unbounded)
-  Eigen::VectorXd lo, hi;                     // certified when `certified`, else = float_lo/hi
+  Eigen::VectorXd lo, hi;  // safe: certified, or the set's own variable bounds; else float_lo/hi
   Eigen::MatrixXd lower_points, upper_points;  // column l: a point attaining lo[l] / hi[l] (LP tolerance)
   std::vector<double> maxima;                 // bound on max d^T x per direction (see below)
   bool certified = false;

@@ -29,9 +29,8 @@ TEST(SoundnessCampaign, NoFalseEmptyAndTheTruthInsideEveryGuaranteedPui) {
       ++numerical;  // an honest failure (exit 3), never a wrong answer
       continue;
     }
-    // Every PUI holds the truth: a guaranteed one by proof, the others because an undecided
-    // orthant contributes the orthant itself. (A non-guaranteed box is the floating-point extent
-    // and could in principle miss by the LP tolerance; the slice has no such case.)
+    // Every PUI holds the truth: a guaranteed one by proof, the others because an end that
+    // could not be certified is the orthant's own bound (never the floating-point extent).
     EXPECT_TRUE(o.theta_in_box) << where << (o.guaranteed ? " (guaranteed)" : " (not guaranteed)");
     consistent += o.verdict == sets::Falsified::no;
     unknown += o.verdict == sets::Falsified::unknown;

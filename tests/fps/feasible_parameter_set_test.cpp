@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "sets/core/error.hpp"
+#include "sets/examples/bounded_error_regression.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/numeric/glpk_environment.hpp"
 #include "sets/numeric/linear_program.hpp"
@@ -458,4 +459,24 @@ RC_GTEST_PROP(FeasibleParameterSet, ContainsAgreesWithExactArithmetic, ()) {
   const sets::BoolInterval v = fps.contains(theta);
   if (member) RC_ASSERT(v != sets::BoolInterval::no);
   if (!member) RC_ASSERT(v != sets::BoolInterval::yes);
+}
+
+TEST(Pui, BadlyScaledColumnsTheFiveMissesOfTheSoundnessCampaign) {
+  // Columns scaled by 10^-10..10^10: GLPK's absolute tolerances took the 1e-10 columns for zero
+  // (false "unbounded") and stopped the 1e10 columns' objectives at a wrong vertex, so the
+  // floating-point extent had width-0 intervals that missed theta (seeds 752, 4112, 4502, 9087,
+  // 9662 of the 10 000). The LP now runs on exactly column-scaled data, and a box whose ends
+  // cannot be certified is never the floating-point extent.
+  for (unsigned long seed : {752ul, 4112ul, 4502ul, 9087ul, 9662ul}) {
+    const sets::BoundedErrorRegression problem = sets::bounded_error_regression(seed);
+    ASSERT_TRUE(problem.kind == sets::RegressionKind::badly_scaled);
+    const sets::PuiResult r = sets::pui(problem.fps, problem.options);
+    const std::string where = "seed " + std::to_string(seed);
+    EXPECT_EQ(r.consistency.falsified, sets::Falsified::no) << where;
+    EXPECT_TRUE(sets::contains(r.box, problem.theta)) << where;
+    EXPECT_TRUE(r.guaranteed) << where;
+    EXPECT_TRUE(sets::lower(r.box).allFinite() && sets::upper(r.box).allFinite()) << where;
+    for (Eigen::Index j = 0; j < r.box.size(); ++j)  // tight: a real interval, not a point
+      EXPECT_LT(r.box[j].lower(), r.box[j].upper()) << where << ", theta_" << j;
+  }
 }

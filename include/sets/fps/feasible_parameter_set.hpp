@@ -95,9 +95,15 @@ struct OrthantReport {
 
 struct PuiResult {
   IntervalVector box;             // the PUIs [theta_min, theta_max]; size 0 when certified empty
+  /// The floating-point LP extents (an estimate: may miss the set by the LP's tolerances, e.g.
+  /// on badly scaled data). With `safe`, `box` never falls back to it: an end that cannot be
+  /// certified is the orthant's own bound there (0 or +-inf).
+  IntervalVector unreliable_box;
   Eigen::VectorXd central;        // centre of the box (eqs. 41–42)
   ConsistencyVerdict consistency; // do the data falsify the model? (yes/no only when certified)
-  bool guaranteed = false;        // the box is a rigorous outer bound: every finite end certified
+  /// Every orthant's extent certified by safe bounds. With `safe` the box is an outer bound
+  /// either way; false means some ends fell back to the orthant's own bounds (0 or +-inf).
+  bool guaranteed = false;
   std::vector<OrthantReport> orthants;
   Eigen::MatrixXd lower_points;   // column l: a feasible point attaining theta_l^min (LP tolerance)
   Eigen::MatrixXd upper_points;   // column l: a feasible point attaining theta_l^max
