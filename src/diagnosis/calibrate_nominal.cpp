@@ -10,18 +10,20 @@
 
 namespace sets::diagnosis_stage {
 
-int screening_substeps(const ModelFile& model, const Recording& est, const Simulator& exact, int final_substeps) {
+int screening_substeps(const ModelFile& model, const Recording& est, const Simulator& exact, const Eigen::VectorXd& p,
+                       int final_substeps, int at_least) {
   // Screening runs thousands of simulations: use the coarsest step that gives the same fits.
-  const auto ref = evaluate(exact, exact.parameter_values());
+  const auto ref = evaluate(exact, p);
   for (int sub : {1, 2, 5}) {
+    if (sub < at_least) continue;
     if (sub >= final_substeps || !ref.ok) break;
     Simulator s(model, est, {sub});
-    const auto r = evaluate(s, s.parameter_values());
+    const auto r = evaluate(s, p);
     bool same = r.ok;
     for (std::size_t j = 0; same && j < r.fit.size(); ++j) same = std::abs(r.fit[j] - ref.fit[j]) < 0.2;
     if (same) return sub;
   }
-  return final_substeps;
+  return std::max(at_least, final_substeps);
 }
 
 namespace {
@@ -57,6 +59,38 @@ Recording head_of(const Recording& r, int rows) {
   return h;
 }
 
+// One start calibrated with the screening substeps, its optimum checked with the final ones.
+// RK4 damps a mode it resolves coarsely (|R(i w h)| < 1), so the coarse output error can prefer a
+// negative damping that the coarse simulation hides and the fine one shows as growth without
+// bound. An optimum whose final-substep simulation is not finite, or fits worse than its start or
+// the file's values (`file`, final substeps), is rejected, and the start is calibrated again with
+// the final substeps (whose trial steps that blow up Levenberg-Marquardt refuses). Fits and cost
+// of the result are at the final substeps; ok = false (the reason in `note`) when neither converges.
+CalibrationResult calibrate_from(const Context& c, const Eigen::VectorXd& start, const CalibrationResult& file,
+                                 const std::vector<int>& free, const CalibrationOptions& copt, std::ostringstream& note) {
+  const CalibrationResult from = evaluate(c.exact, start);
+  double reference = 1e300;
+  for (const CalibrationResult* r : {&from, &file})
+    if (r->ok) reference = std::min(reference, r->cost);
+  const auto confirmed = [reference](const CalibrationResult& x) { return x.ok && x.cost <= reference; };
+  const CalibrationResult coarse = calibrate(c.fast, start, free, copt);
+  if (!coarse.ok) {
+    note << "blows up;";
+    return coarse;
+  }
+  CalibrationResult x = evaluate(c.exact, coarse.parameters);
+  x.free = free;
+  if (confirmed(x)) return x;
+  note << "an optimum that " << (x.ok ? "fits worse than its start or the file's values" : "diverges") << " at " << c.options.final_substeps
+       << " RK4 substeps (the screening step hides it), calibrated again with " << c.options.final_substeps << " -> ";
+  CalibrationResult again = calibrate(c.exact, start, free, copt);
+  if (!confirmed(again)) {
+    note << "did not converge;";
+    again.ok = false;
+  }
+  return again;
+}
+
 }  // namespace
 
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
@@ -64,9 +98,12 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   const Eigen::Index N = Y.rows();
   c.say("simulating the nominal model");
   const Eigen::VectorXd p0 = values_of(c.model);
+  CalibrationResult at_file;
   {
     SimulationResult r = c.exact.simulate(p0);  // throws with the time if it blows up
     d.fit_start_estimation = fits(Y, r.outputs);
+    at_file.ok = r.outputs.allFinite();
+    at_file.cost = cost_of(d.fit_start_estimation);
     if (c.validation)
       d.fit_start_validation = fits(c.exact_validation->measured(), c.exact_validation->simulate(p0).outputs);
   }
@@ -97,19 +134,19 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   note << "calibrated from " << starts.size() << (starts.size() == 1 ? " start" : " starts") << ":";
   double best_cost = 1e300, worst_cost = 0;
   for (const auto& [label, s] : starts) {
-    const CalibrationResult r = calibrate(c.fast, s, n.free, copt);
     note << " " << label << " -> ";
-    if (!r.ok) {
-      note << "blows up;";
-      continue;
-    }
+    const CalibrationResult r = calibrate_from(c, s, at_file, n.free, copt, note);
+    if (!r.ok) continue;
     note << "fit";
     for (double f : r.fit) note << " " << fixed1(f) << " %";
     note << ";";
     worst_cost = std::max(worst_cost, r.cost);
     if (r.cost < best_cost) best_cost = r.cost, n.calibration = r;
   }
-  if (!n.calibration.ok) n.calibration = evaluate(c.fast, p0);
+  if (!n.calibration.ok) {
+    n.calibration = evaluate(c.exact, p0);
+    if (!n.free.empty()) note << " the nominal calibration did not converge from any start: the file's values are used;";
+  }
   if (starts.size() > 1 && worst_cost > 1.5 * best_cost)
     note << " the output-error cost has several minima; the best is used";
   d.nominal = c.model;

@@ -73,14 +73,26 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   d.has_validation = val != nullptr;
   DiagnosisOptions opt = options;
   Simulator exact(model, est, {opt.final_substeps});
-  if (opt.screening_substeps <= 0) opt.screening_substeps = screening_substeps(model, est, exact, opt.final_substeps);
+  if (opt.screening_substeps <= 0)
+    opt.screening_substeps = screening_substeps(model, est, exact, exact.parameter_values(), opt.final_substeps);
   Simulator fast(model, est, {opt.screening_substeps});
   std::unique_ptr<Simulator> exact_val;
   if (val) exact_val = std::make_unique<Simulator>(model, *val, SimulationOptions{opt.final_substeps});
   d.outputs = exact.output_columns();
-  const Context c{model, est, val, opt, exact, fast, exact_val.get(), say};
-
-  const NominalFit nominal = calibrate_nominal(c, d);                          // 1.
+  const NominalFit nominal = calibrate_nominal({model, est, val, opt, exact, fast, exact_val.get(), say}, d);  // 1.
+  // The calibrated values can have faster modes than the file's: a screening step that resolved
+  // the file's values may damp them or blow up on them (RK4 outside its stability region), so
+  // the step is checked again at the calibrated values and made finer if needed.
+  const int sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps,
+                                     opt.screening_substeps);
+  std::unique_ptr<Simulator> finer;
+  if (sub > opt.screening_substeps) {
+    say("the calibrated nominal needs a finer screening step: " + std::to_string(sub) + " RK4 substeps instead of " +
+        std::to_string(opt.screening_substeps));
+    opt.screening_substeps = sub;
+    finer = std::make_unique<Simulator>(model, est, SimulationOptions{sub});
+  }
+  const Context c{model, est, val, opt, exact, finer ? *finer : fast, exact_val.get(), say};
   const NoiseFloor noise = noise_floor(c, nominal, d);
   d.noise_sigma = noise.sigma;
   for (const auto& n : d.noise)

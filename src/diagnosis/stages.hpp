@@ -80,12 +80,14 @@ std::string fmt(double x, int prec = 3);
 std::string fixed1(double x);
 
 // ---- 1. calibrate
-/// The fewest RK4 substeps of {1, 2, 5} whose fits agree with the final substeps within 0.2 points.
-int screening_substeps(const ModelFile& model, const Recording& estimation, const Simulator& exact, int final_substeps);
+/// The fewest RK4 substeps of {1, 2, 5} (at least `at_least`) whose fits at the parameters `p`
+/// agree with the final substeps within 0.2 points; else final_substeps.
+int screening_substeps(const ModelFile& model, const Recording& estimation, const Simulator& exact, const Eigen::VectorXd& p,
+                       int final_substeps, int at_least = 1);
 
 struct NominalFit {
   std::vector<int> free;               // the nominal's free parameters
-  CalibrationResult calibration;       // at the screening substeps
+  CalibrationResult calibration;       // fits and cost at the final substeps (calibrate_from)
   SimulationResult simulation;         // calibrated, final substeps, estimation record
   Eigen::MatrixXd validation_outputs;  // calibrated, final substeps, validation record (empty without)
   double cost = 0;                     // cost_of the calibrated fits (final substeps)
