@@ -1,5 +1,5 @@
 // PUIs of a p = 6 bounded-error problem with N = 10^3, 10^4, 10^5 strips: cold versus warm
-// start, with and without safe bounds.
+// start, with and without safe bounds, the dense simplex (default) versus GLPK for every LP.
 //   ./build/bench/pui_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
@@ -27,18 +27,26 @@ void BM_Pui(benchmark::State& state) {
   sets::PuiOptions options;
   options.warm_start = state.range(1) != 0;
   options.safe = state.range(2) != 0;
+  options.solver = state.range(3) != 0 ? sets::PuiLpSolver::dense : sets::PuiLpSolver::glpk;
+  int lps = 0, fallbacks = 0;
   for (auto _ : state) {
     auto r = sets::pui(fps, options);
+    if (options.safe && !r.guaranteed) state.SkipWithError("PUI not certified");
+    lps = r.lp_solves;
+    fallbacks = r.lp_fallbacks;
     benchmark::DoNotOptimize(r.box);
   }
-  state.SetLabel(std::string(options.warm_start ? "warm" : "cold") + (options.safe ? ",safe" : ",float"));
+  state.counters["LPs"] = lps;
+  state.counters["to_GLPK"] = fallbacks;
+  state.SetLabel(std::string(options.warm_start ? "warm" : "cold") + (options.safe ? ",safe" : ",float") +
+                 (state.range(3) != 0 ? ",dense" : ",glpk"));
 }
 
 }  // namespace
 
 BENCHMARK(BM_Pui)
-    ->ArgsProduct({{1000, 10000, 100000}, {0, 1}, {0, 1}})
-    ->ArgNames({"N", "warm", "safe"})
+    ->ArgsProduct({{1000, 10000, 100000}, {0, 1}, {0, 1}, {0, 1}})
+    ->ArgNames({"N", "warm", "safe", "dense"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

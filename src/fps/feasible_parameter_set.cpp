@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "sets/core/error.hpp"
+#include "sets/numeric/dense_lp.hpp"
 #include "sets/numeric/linear_program.hpp"
 #include "sets/numeric/lp_certificate.hpp"
 #include "numeric/certified_extent.hpp"
@@ -193,8 +194,10 @@ namespace {
 // violated, the relaxation's optimum is the full optimum (tightness is not lost).
 class OrthantLp {
  public:
-  OrthantLp(const FeasibleParameterSet& fps, const Orthant& s, bool working_set, bool warm)
-      : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(warm) {
+  OrthantLp(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options)
+      : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(options.warm_start) {
+    if (options.solver == PuiLpSolver::dense) dense_.emplace(fps.dimension());
+    const bool working_set = options.working_set;
     const int p = fps.dimension(), N = fps.size();
     for (int j = 0; j < p; ++j) {
       if (s.empty() || s[static_cast<std::size_t>(j)] == 0) continue;  // 0: a free parameter
@@ -226,6 +229,7 @@ class OrthantLp {
 
   LinearProgram& lp() { return lp_; }
   bool complete() const { return added_ == static_cast<int>(in_.size()); }
+  int fallbacks() const { return fallbacks_; }
 
   /// Every sample's rows (as add_sample would add them), for exact checks on the full set.
   LpRows all_rows() const {
@@ -257,8 +261,7 @@ class OrthantLp {
   /// Solves the current objective over the full set: re-solves after adding violated samples.
   LpSolution solve(int& lps) {
     for (;;) {
-      if (!warm_) lp_.reset_basis();
-      LpSolution sol = lp_.solve();
+      LpSolution sol = solve_working_set();
       ++lps;
       if (sol.status == LpStatus::infeasible || complete()) return sol;
       if (sol.status == LpStatus::unbounded) {
@@ -272,15 +275,38 @@ class OrthantLp {
   }
 
  private:
+  // The working set's LP with the objective and bounds the caller set on lp_. The dense solver's
+  // answer is used only when optimal (its multipliers are then certified like GLPK's); GLPK
+  // decides everything else: emptiness, unboundedness, and the LPs the dense solver gives up on.
+  LpSolution solve_working_set() {
+    if (dense_) {
+      dense_->set_objective(lp_.objective(), lp_.sense());
+      for (int j = 0; j < lp_.num_variables(); ++j)
+        dense_->set_variable_bounds(j, lp_.variable_lower(j), lp_.variable_upper(j));
+      if (!warm_) dense_->reset_basis();
+      std::optional<LpSolution> sol = dense_->solve();
+      if (sol && sol->status == LpStatus::optimal) return std::move(*sol);
+      if (!sol) ++fallbacks_;
+    }
+    if (!warm_) lp_.reset_basis();
+    return lp_.solve();
+  }
+
+  // Both solvers hold the same rows in the same order (the multipliers index lp_'s rows).
+  void add_row(const Eigen::VectorXd& a, double lo, double hi) {
+    lp_.add_row(a, lo, hi);
+    if (dense_) dense_->add_row(a, lo, hi);
+  }
+
   void add_sample(int t) {
     in_[static_cast<std::size_t>(t)] = 1;
     ++added_;
     const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
     if (lo_row == hi_row) {
-      lp_.add_row(lo_row, ylo_[t], yhi_[t]);
+      add_row(lo_row, ylo_[t], yhi_[t]);
     } else {
-      lp_.add_row(lo_row, -inf, yhi_[t]);
-      lp_.add_row(hi_row, ylo_[t], inf);
+      add_row(lo_row, -inf, yhi_[t]);
+      add_row(hi_row, ylo_[t], inf);
     }
   }
 
@@ -302,9 +328,11 @@ class OrthantLp {
   }
 
   LinearProgram lp_;
+  std::optional<DenseLp> dense_;
   std::vector<char> in_;
   bool warm_;
   int added_ = 0;
+  int fallbacks_ = 0;
   Eigen::MatrixXd lo_, hi_;  // orthant rows of every sample
   Eigen::VectorXd ylo_, yhi_;
 };
@@ -318,6 +346,7 @@ struct OrthantOutcome {
   bool certified = false;
   bool witness = false;                // a point of the piece proven to satisfy every sample
   int lps = 0;
+  int fallbacks = 0;                   // LPs the dense solver handed to GLPK
 };
 
 // The orthant itself as a box: an outer bound of whatever part of the set lies in it.
@@ -353,13 +382,14 @@ std::optional<Eigen::VectorXd> inscribed_centre(const FeasibleParameterSet& fps,
 
 OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
                              const std::vector<Eigen::VectorXd>& directions) {
-  OrthantLp o(fps, s, options.working_set, options.warm_start);
+  OrthantLp o(fps, s, options);
   // The orthant's sign constraints are variable bounds of the LP, so ends on a coordinate face
   // are exact and need no artificial face there.
   const detail::Extent e =
       detail::certified_extent(o.lp(), [&](int& lps) { return o.solve(lps); }, directions, options.safe);
   OrthantOutcome out;
   out.lps = e.lps;
+  out.fallbacks = o.fallbacks();
   out.status = e.status == detail::ExtentStatus::feasible ? OrthantStatus::feasible
                : e.status == detail::ExtentStatus::empty  ? OrthantStatus::empty
                                                           : OrthantStatus::unknown;
@@ -446,6 +476,7 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
 
   auto absorb = [&](const Orthant& s, OrthantOutcome oc) {
     result.lp_solves += oc.lps;
+    result.lp_fallbacks += oc.fallbacks;
     if (oc.status == OrthantStatus::unknown) {
       // Undecided: never counted as empty. The orthant itself bounds whatever lies in it.
       ++unknown_orthants;

@@ -461,6 +461,145 @@ RC_GTEST_PROP(FeasibleParameterSet, ContainsAgreesWithExactArithmetic, ()) {
   if (!member) RC_ASSERT(v != sets::BoolInterval::yes);
 }
 
+// ---------------------------------------------------------------- dense simplex versus GLPK
+// pui() finds the LP optima with the dense simplex by default and with GLPK on request; both
+// ends are Neumaier–Shcherbina bounds from the solver's multipliers, so on the same data they
+// must agree to LP tolerance, both contain the true parameters, and the dense solver must
+// answer most LPs itself (else the comparison would test GLPK against GLPK).
+namespace {
+
+sets::PuiOptions with_solver(sets::PuiLpSolver solver, sets::PuiOptions o = {}) {
+  o.solver = solver;
+  return o;
+}
+
+// The two boxes are the same to LP tolerance (relative to the box's size).
+void require_same_box(const IntervalVector& a, const IntervalVector& b) {
+  RC_ASSERT(a.size() == b.size());
+  for (Eigen::Index j = 0; j < a.size(); ++j)
+    for (const auto& [u, v] : {std::pair{a[j].lower(), b[j].lower()}, std::pair{a[j].upper(), b[j].upper()}}) {
+      if (std::isinf(u) || std::isinf(v)) {
+        RC_ASSERT(u == v);
+        continue;
+      }
+      const double scale = 1 + std::abs(b[j].upper()) + std::abs(b[j].lower());
+      RC_ASSERT(std::abs(u - v) <= 1e-7 * scale);
+    }
+}
+
+void require_same_pui(const sets::PuiResult& dense, const sets::PuiResult& glpk) {
+  RC_ASSERT(static_cast<int>(dense.consistency.falsified) == static_cast<int>(glpk.consistency.falsified));
+  RC_ASSERT(dense.guaranteed == glpk.guaranteed);
+  RC_ASSERT(dense.orthants.size() == glpk.orthants.size());
+  for (std::size_t k = 0; k < dense.orthants.size(); ++k) {
+    RC_ASSERT(dense.orthants[k].signs == glpk.orthants[k].signs);
+    RC_ASSERT(static_cast<int>(dense.orthants[k].status) == static_cast<int>(glpk.orthants[k].status));
+  }
+  require_same_box(dense.box, glpk.box);
+  RC_ASSERT(glpk.lp_fallbacks == 0);
+  RC_ASSERT(dense.lp_fallbacks * 4 <= dense.lp_solves);
+}
+
+}  // namespace
+
+RC_GTEST_PROP(PuiDenseSolver, SameCertifiedBoxAsGlpkExactRegressors, ()) {
+  const int p = *rc::gen::inRange(1, 9);
+  const int N = *rc::gen::inRange(p + 1, 400);  // beyond 10p + 10: row generation at work
+  const Data d = make_data(p, N, *rc::gen::arbitrary<std::uint64_t>());
+  const auto fps = FeasibleParameterSet::from_data(d.Phi, d.y, d.delta);
+  const bool warm = *rc::gen::arbitrary<bool>();
+  const auto dense = sets::pui(fps, with_solver(sets::PuiLpSolver::dense, {.warm_start = warm}));
+  const auto glpk = sets::pui(fps, with_solver(sets::PuiLpSolver::glpk, {.warm_start = warm}));
+  RC_ASSERT(dense.guaranteed);
+  RC_ASSERT(sets::contains(dense.box, d.theta));
+  require_same_pui(dense, glpk);
+}
+
+RC_GTEST_PROP(PuiDenseSolver, SameCertifiedBoxAsGlpkIntervalRegressors, ()) {
+  const int p = *rc::gen::inRange(1, 6);
+  const int N = *rc::gen::inRange(p + 2, 200);
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  const Data d = make_data(p, N, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_real_distribution<double> U(0, 1);
+  IntervalMatrix Phi(N, p);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    for (int j = 0; j < p; ++j) {
+      const double r = (j % 2 == 0 ? 0.02 : 0.0) * U(rng), off = r * (2 * U(rng) - 1);  // mixed point/interval columns
+      Phi(t, j) = sets::interval_around(d.Phi(t, j) + off, r);
+    }
+    Y[t] = sets::interval_around(d.y[t], d.delta[t]);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  const bool every_orthant = *rc::gen::arbitrary<bool>();
+  const auto orthants = every_orthant ? sets::OrthantSelection::all : sets::OrthantSelection::remark2;
+  const auto dense = sets::pui(fps, with_solver(sets::PuiLpSolver::dense, {.orthants = orthants}));
+  const auto glpk = sets::pui(fps, with_solver(sets::PuiLpSolver::glpk, {.orthants = orthants}));
+  if (every_orthant) {
+    RC_ASSERT(dense.guaranteed);
+    RC_ASSERT(sets::contains(dense.box, d.theta));
+  }
+  require_same_pui(dense, glpk);
+}
+
+// Degenerate sets through both solvers: empty (two strips that cannot meet), a direction the
+// data do not bound, every sample twice, samples with a zero regressor, and delta = 0 (a flat
+// set: equality rows).
+TEST(PuiDenseSolver, DegenerateSetsAgreeWithGlpk) {
+  const auto both = [](const FeasibleParameterSet& fps) {
+    return std::pair{sets::pui(fps, with_solver(sets::PuiLpSolver::dense)),
+                     sets::pui(fps, with_solver(sets::PuiLpSolver::glpk))};
+  };
+  const auto same_box = [](const IntervalVector& a, const IntervalVector& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (Eigen::Index j = 0; j < a.size(); ++j)
+      for (const auto& [u, v] : {std::pair{a[j].lower(), b[j].lower()}, std::pair{a[j].upper(), b[j].upper()}}) {
+        if (std::isinf(v))
+          EXPECT_EQ(u, v) << j;
+        else
+          EXPECT_NEAR(u, v, 1e-9 * (1 + std::abs(v))) << j;
+      }
+  };
+  {  // empty: theta in [-0.1, 0.1] and in [0.9, 1.1]
+    Eigen::MatrixXd Phi(3, 1);
+    Phi << 1, 1, 1;
+    const auto [dense, glpk] = both(FeasibleParameterSet::from_data(Phi, Eigen::Vector3d(0, 1, 0), Eigen::Vector3d::Constant(0.1)));
+    EXPECT_TRUE(dense.empty());
+    EXPECT_TRUE(glpk.empty());
+  }
+  {  // theta_2 unconstrained: infinite ends, never a finite number
+    Eigen::MatrixXd Phi(4, 2);
+    Phi << 1, 0, 1, 0, 2, 0, 1, 0;
+    const auto [dense, glpk] =
+        both(FeasibleParameterSet::from_data(Phi, Eigen::Vector4d(1, 1, 2, 1), Eigen::Vector4d::Constant(0.1)));
+    ASSERT_FALSE(dense.empty());
+    EXPECT_EQ(dense.box[1].lower(), -sets::inf);
+    EXPECT_EQ(dense.box[1].upper(), sets::inf);
+    same_box(dense.box, glpk.box);
+  }
+  {  // duplicates, zero regressors, and delta = 0
+    const Data d = make_data(3, 30, 5);
+    Eigen::MatrixXd Phi(62, 3);
+    Eigen::VectorXd y(62), delta(62);
+    Phi << d.Phi, d.Phi, Eigen::RowVector3d::Zero(), Eigen::RowVector3d::Zero();
+    y << d.y, d.y, 0.0, 0.01;
+    delta << d.delta, d.delta, 0.0, 0.05;
+    const auto [dense, glpk] = both(FeasibleParameterSet::from_data(Phi, y, delta));
+    EXPECT_TRUE(dense.guaranteed);
+    EXPECT_TRUE(sets::contains(dense.box, d.theta));
+    same_box(dense.box, glpk.box);
+    // delta = 0 for one sample: the set is flat in one direction; still both agree.
+    Eigen::VectorXd flat = delta;
+    flat[0] = 0;
+    Eigen::VectorXd y_flat = y;
+    y_flat[0] = d.Phi.row(0).dot(d.theta);
+    const auto [fd, fg] = both(FeasibleParameterSet::from_data(Phi, y_flat, flat));
+    EXPECT_EQ(static_cast<int>(fd.consistency.falsified), static_cast<int>(fg.consistency.falsified));
+    same_box(fd.box, fg.box);
+  }
+}
+
 TEST(Pui, BadlyScaledColumnsTheFiveMissesOfTheSoundnessCampaign) {
   // Columns scaled by 10^-10..10^10: GLPK's absolute tolerances took the 1e-10 columns for zero
   // (false "unbounded") and stopped the 1e10 columns' objectives at a wrong vertex, so the

@@ -71,6 +71,13 @@ enum class OrthantSelection {
   all       // every one of the 2^p orthants (only for interval regressors)
 };
 
+/// Which solver finds the LP optima of pui()/support(). Both give floating-point multipliers
+/// only; every reported end is the same Neumaier–Shcherbina bound computed from them.
+enum class PuiLpSolver {
+  dense,  // numeric/dense_lp.hpp, warm-started across the 2p objectives; GLPK where it gives up
+  glpk    // every LP in GLPK (the reference; for comparisons and tests)
+};
+
 struct PuiOptions {
   OrthantSelection orthants = OrthantSelection::remark2;
   bool safe = true;           // certify every end with a Neumaier–Shcherbina safe bound
@@ -79,6 +86,7 @@ struct PuiOptions {
   /// the violated ones until none is (same PUIs, much faster for N >> p). Off: every sample.
   bool working_set = true;
   bool warm_start = true;     // re-solve from the previous basis (false: cold start, for benchmarks)
+  PuiLpSolver solver = PuiLpSolver::dense;
 };
 
 /// feasible: the LPs found points (see OrthantReport::witness for a proof); empty: certified
@@ -108,6 +116,8 @@ struct PuiResult {
   Eigen::MatrixXd lower_points;   // column l: a feasible point attaining theta_l^min (LP tolerance)
   Eigen::MatrixXd upper_points;   // column l: a feasible point attaining theta_l^max
   int lp_solves = 0;
+  int lp_fallbacks = 0;           // of those, the dense solver gave up on (GLPK solved them; GLPK
+                                  // also re-decides every infeasible or unbounded verdict)
 
   /// True only when the data are *certified* to falsify the model (consistency.falsified ==
   /// yes). `unknown` is not empty: the box is then still an outer bound (infinite where nothing
