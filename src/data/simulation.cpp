@@ -62,6 +62,27 @@ struct Simulator::Impl {
   std::vector<int> history_index;   // slot -> index in recorded_slots (or -1)
   Eigen::MatrixXd measured;
   std::vector<int> output_slots;
+  // Addresses of the slots the time loop touches (the deque never moves its elements; filled
+  // once every slot exists): indexing a deque costs a division per access.
+  double* t_ptr = nullptr;
+  std::vector<double*> param_ptr, input_ptr, state_ptr, signal_ptr, sampled_ptr, recorded_ptr, output_ptr;
+
+  double* at(int slot) { return &slots[static_cast<std::size_t>(slot)]; }
+  std::vector<double*> addresses(const std::vector<int>& of) {
+    std::vector<double*> a;
+    for (int s : of) a.push_back(at(s));
+    return a;
+  }
+  void take_addresses() {
+    t_ptr = at(t_slot);
+    param_ptr = addresses(param_slots);
+    input_ptr = addresses(input_slots);
+    state_ptr = addresses(state_slots);
+    signal_ptr = addresses(signal_slots);
+    sampled_ptr = addresses(sampled_slots);
+    recorded_ptr = addresses(recorded_slots);
+    output_ptr = addresses(output_slots);
+  }
 
   int new_slot(const std::string& name) {
     slots.push_back(0.0);
@@ -94,21 +115,19 @@ struct Simulator::Impl {
   static double eval(mu::Parser& p) { return p.Eval(); }
 
   void eval_signals() {
-    for (std::size_t i = 0; i < signal_expr.size(); ++i)
-      slots[static_cast<std::size_t>(signal_slots[i])] = signal_expr[i].Eval();
+    for (std::size_t i = 0; i < signal_expr.size(); ++i) *signal_ptr[i] = signal_expr[i].Eval();
   }
 
   // Inputs at stage j (0 .. 2 substeps) of sample interval k.
   void set_inputs(std::size_t k, int j) {
-    for (std::size_t i = 0; i < input_slots.size(); ++i)
-      slots[static_cast<std::size_t>(input_slots[i])] = input_data[i].at(k, j);
+    for (std::size_t i = 0; i < input_ptr.size(); ++i) *input_ptr[i] = input_data[i].at(k, j);
   }
 
   void derivative(const double* x, double tt, double* dx) {
-    slots[static_cast<std::size_t>(t_slot)] = tt;
-    for (std::size_t i = 0; i < state_slots.size(); ++i) slots[static_cast<std::size_t>(state_slots[i])] = x[i];
+    *t_ptr = tt;
+    for (std::size_t i = 0; i < state_ptr.size(); ++i) *state_ptr[i] = x[i];
     eval_signals();
-    for (std::size_t i = 0; i < state_slots.size(); ++i) dx[i] = deriv_expr[static_cast<std::size_t>(deriv_of_state[i])].Eval();
+    for (std::size_t i = 0; i < state_ptr.size(); ++i) dx[i] = deriv_expr[static_cast<std::size_t>(deriv_of_state[i])].Eval();
   }
 };
 
@@ -191,6 +210,7 @@ Simulator::Simulator(const ModelFile& model, const Recording& data, SimulationOp
                        ", n): only inputs, states, signals and sampled signals have a past");
   for (const auto& o : model.outputs) I.output_slots.push_back(I.slot_of.at(o.first));
   I.measured = take_measured(model, data);
+  I.take_addresses();
 }
 
 Simulator::~Simulator() = default;
@@ -247,22 +267,20 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
   const std::size_t ns = I.state_slots.size();
   const std::size_t nr = I.recorded_slots.size();
   if (params.size() != static_cast<Eigen::Index>(I.param_slots.size())) throw InputError("wrong number of parameters");
-  for (std::size_t i = 0; i < I.param_slots.size(); ++i) I.slots[static_cast<std::size_t>(I.param_slots[i])] = params[static_cast<Eigen::Index>(i)];
-  std::vector<double> hist(static_cast<std::size_t>(N) * nr, 0.0);
+  for (std::size_t i = 0; i < I.param_ptr.size(); ++i) *I.param_ptr[i] = params[static_cast<Eigen::Index>(i)];
+  // The recorded symbols' past, kept only when prev() reads it.
+  std::vector<double> hist(I.prevs.empty() ? 0 : static_cast<std::size_t>(N) * nr);
   std::vector<double> x(I.initial_state), k1(ns), k2(ns), k3(ns), k4(ns), xt(ns);
   outputs.resize(N, static_cast<Eigen::Index>(I.output_slots.size()));
   if (record_values) values.resize(N, static_cast<Eigen::Index>(nr));
   const bool scheduled = schedule.rows() > 0;
-  std::vector<bool> filled(nr, false);
   for (int k = 0; k < N; ++k) {
     const double tk = I.time[static_cast<std::size_t>(k)];
-    I.slots[static_cast<std::size_t>(I.t_slot)] = tk;
+    *I.t_ptr = tk;
     if (scheduled)
-      for (std::size_t i = 0; i < I.param_slots.size(); ++i)
-        I.slots[static_cast<std::size_t>(I.param_slots[i])] = schedule(k, static_cast<Eigen::Index>(i));
-    for (std::size_t i = 0; i < I.input_slots.size(); ++i)
-      I.slots[static_cast<std::size_t>(I.input_slots[i])] = I.input_data[i].at(static_cast<std::size_t>(k), 0);
-    for (std::size_t i = 0; i < ns; ++i) I.slots[static_cast<std::size_t>(I.state_slots[i])] = x[i];
+      for (std::size_t i = 0; i < I.param_ptr.size(); ++i) *I.param_ptr[i] = schedule(k, static_cast<Eigen::Index>(i));
+    for (std::size_t i = 0; i < I.input_ptr.size(); ++i) *I.input_ptr[i] = I.input_data[i].at(static_cast<std::size_t>(k), 0);
+    for (std::size_t i = 0; i < ns; ++i) *I.state_ptr[i] = x[i];
     // prev() values: sample k - n, or sample 0 when there is none yet.
     for (const auto& pr : I.prevs) {
       const int h = I.history_index[static_cast<std::size_t>(pr.symbol)];
@@ -281,14 +299,13 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
       I.slots[static_cast<std::size_t>(pr.slot)] = v;
     }
     I.eval_signals();
-    for (std::size_t i = 0; i < I.sampled_expr.size(); ++i)
-      I.slots[static_cast<std::size_t>(I.sampled_slots[i])] = I.sampled_expr[i].Eval();
+    for (std::size_t i = 0; i < I.sampled_expr.size(); ++i) *I.sampled_ptr[i] = I.sampled_expr[i].Eval();
     I.eval_signals();  // signals may use sampled values
-    for (std::size_t i = 0; i < nr; ++i) hist[static_cast<std::size_t>(k) * nr + i] = I.slots[static_cast<std::size_t>(I.recorded_slots[i])];
-    for (std::size_t j = 0; j < I.output_slots.size(); ++j)
-      outputs(k, static_cast<Eigen::Index>(j)) = I.slots[static_cast<std::size_t>(I.output_slots[j])];
+    if (!hist.empty())
+      for (std::size_t i = 0; i < nr; ++i) hist[static_cast<std::size_t>(k) * nr + i] = *I.recorded_ptr[i];
+    for (std::size_t j = 0; j < I.output_ptr.size(); ++j) outputs(k, static_cast<Eigen::Index>(j)) = *I.output_ptr[j];
     if (record_values)
-      for (std::size_t i = 0; i < nr; ++i) values(k, static_cast<Eigen::Index>(i)) = hist[static_cast<std::size_t>(k) * nr + i];
+      for (std::size_t i = 0; i < nr; ++i) values(k, static_cast<Eigen::Index>(i)) = *I.recorded_ptr[i];
     if (k + 1 == N) break;
     const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
     double tt = tk;

@@ -4,6 +4,7 @@
 #include <unsupported/Eigen/NumericalDiff>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sets {
@@ -31,7 +32,16 @@ struct Residual {
   Eigen::VectorXd weight; // 1 / ||y_j - mean||
   int* evaluations;
   const std::function<void(int)>* progress;
-  mutable Eigen::MatrixXd yhat;
+  // The last two simulations: NumericalDiff simulates the accepted point again at the start of
+  // every Jacobian, and calibrate() once more at the end. The simulation is deterministic, so a
+  // repeated parameter vector gets the same outputs without simulating.
+  struct Simulated {
+    Eigen::VectorXd p;
+    Eigen::MatrixXd yhat;
+    bool ok = false;
+  };
+  mutable std::array<Simulated, 2> recent;
+  mutable std::size_t next = 0;
 
   int inputs() const { return static_cast<int>(free.size()); }
   int values() const { return static_cast<int>(sim->measured().size()); }
@@ -45,11 +55,23 @@ struct Residual {
     return p;
   }
 
-  int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& f) const {
-    const auto& y = sim->measured();
+  const Simulated& simulated(const Eigen::VectorXd& p) const {
+    for (const auto& r : recent)
+      if (r.p.size() == p.size() && r.p == p) return r;
+    Simulated& r = recent[next];
+    next = (next + 1) % recent.size();
     ++*evaluations;
     if (*progress && *progress) (*progress)(*evaluations);
-    if (!sim->simulate_outputs(parameters(z), yhat) || !yhat.allFinite()) {
+    r.p = p;
+    r.ok = sim->simulate_outputs(p, r.yhat) && r.yhat.allFinite();
+    return r;
+  }
+
+  int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& f) const {
+    const auto& y = sim->measured();
+    const Simulated& s = simulated(parameters(z));
+    const Eigen::MatrixXd& yhat = s.yhat;
+    if (!s.ok) {
       // A trial step that blows up: a large, finite residual sends LM back.
       f = Eigen::VectorXd::Constant(values(), 1e3 / std::sqrt(static_cast<double>(values())));
       return 0;
@@ -63,16 +85,27 @@ struct Residual {
 
 }  // namespace
 
-CalibrationResult evaluate(const Simulator& sim, const Eigen::VectorXd& parameters) {
+namespace {
+
+CalibrationResult result_of(const Simulator& sim, const Eigen::VectorXd& parameters, Eigen::MatrixXd outputs, bool ok) {
   CalibrationResult r;
   r.parameters = parameters;
   r.evaluations = 1;
-  r.ok = sim.simulate_outputs(parameters, r.outputs) && r.outputs.allFinite();
+  r.outputs = std::move(outputs);
+  r.ok = ok;
   if (r.ok) {
     r.fit = fits(sim.measured(), r.outputs);
     for (double f : r.fit) r.cost += (1 - f / 100) * (1 - f / 100);
   }
   return r;
+}
+
+}  // namespace
+
+CalibrationResult evaluate(const Simulator& sim, const Eigen::VectorXd& parameters) {
+  Eigen::MatrixXd outputs;
+  const bool ok = sim.simulate_outputs(parameters, outputs) && outputs.allFinite();
+  return result_of(sim, parameters, std::move(outputs), ok);
 }
 
 CalibrationResult calibrate(const Simulator& sim, const Eigen::VectorXd& start, const std::vector<int>& free,
@@ -110,7 +143,9 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::VectorXd& start, 
   Eigen::VectorXd z(n);
   for (Eigen::Index i = 0; i < n; ++i) z[i] = start[free[static_cast<std::size_t>(i)]] / res.scale[i];
   // Step 1e-3 of each scaled parameter: friction signs make the cost rough at the 1e-8 level.
-  Eigen::NumericalDiff<Residual> diff(res, 1e-6);
+  res.recent[0] = {start, r.outputs, true};  // LM starts where `r` was simulated (when z * scale rounds back to it)
+  res.next = 1;
+  Eigen::NumericalDiff<Residual> diff(res, 1e-6);  // a copy of res: its memory is diff's
   Eigen::LevenbergMarquardt<Eigen::NumericalDiff<Residual>> lm(diff);
   lm.parameters.maxfev = std::max(1, options.max_evaluations / static_cast<int>(n + 1));
   lm.parameters.ftol = options.tolerance;
@@ -118,9 +153,10 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::VectorXd& start, 
   lm.parameters.factor = 10;
   lm.minimize(z);
   const Eigen::VectorXd best = res.parameters(z);
-  CalibrationResult out = evaluate(sim, best);
+  const auto& at_best = diff.simulated(best);  // LM's last accepted point: simulated already
+  CalibrationResult out = result_of(sim, best, at_best.yhat, at_best.ok);
   out.free = free;
-  out.evaluations = evaluations + 1;
+  out.evaluations = evaluations;
   if (!out.ok || out.cost > r.cost) {  // never return something worse than the start
     r.evaluations = out.evaluations;
     return r;

@@ -50,38 +50,61 @@ double validation_cost(const Context& c, const ModelFile& m) {
   }
 }
 
-// Output-error calibration of one hypothesis from each of its starts (the best kept), then its
-// cost with its own term switched off at the calibrated point.
-Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::VectorXd>& starts, const Scales& known) {
+template <class Job>
+void parallel(int threads, std::size_t jobs, Job job) {
+  std::atomic<std::size_t> next{0};
+  run_worker_threads(threads, [&] {
+    for (std::size_t i; (i = next++) < jobs;) job(i);
+  });
+}
+
+// One hypothesis to refine: its candidate and the starts of its output-error calibration.
+struct ToRefine {
+  const Candidate* cand;
+  std::vector<Eigen::VectorXd> starts;
+};
+
+// What every start of one hypothesis shares: its free parameters, their scales and the budget.
+struct Setup {
+  bool ok = false;
+  std::vector<int> free;
+  CalibrationOptions options;
+  std::vector<Eigen::VectorXd> from;
+};
+
+Setup setup_of(const Context& c, const ToRefine& r, const Scales& known) {
+  const Candidate& cand = *r.cand;
+  Setup u;
+  Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
+  u.free = s.free_parameters();
+  auto ks = known;
+  for (std::size_t k = 0; k < cand.parameters.size(); ++k) ks.emplace_back(cand.parameters[k], cand.scales[k]);
+  u.options.scale = scales_for(cand.model, u.free, ks);
+  // Multi-start (the screening's best grid points, its least-squares step, the equation-error
+  // estimate); each with the budget of 80 Jacobians: with 30 the Stribeck law (three parameters
+  // on a rough cost) stopped at a third of the misfit reduction it reaches.
+  u.options.max_evaluations = 80 * static_cast<int>(u.free.size() + 1);
+  u.from = r.starts;
+  if (u.from.empty()) u.from.push_back(s.parameter_values());
+  if (cand.restart) {  // from the file's values: the calibrated nominal may be far off
+    Eigen::VectorXd p = s.parameter_values();
+    for (std::size_t i = 0; i < cand.model.parameters.size(); ++i)
+      if (const auto* orig = c.model.parameter(cand.model.parameters[i].name); orig && !cand.model.parameters[i].fixed)
+        p[static_cast<Eigen::Index>(i)] = orig->value;
+    u.from.push_back(p);
+  }
+  u.ok = true;
+  return u;
+}
+
+// The calibrated hypothesis (`best`: its best start) on validation, and with its own term
+// switched off.
+Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& best) {
   Trial t;
   t.cand = cand;
+  if (!best.ok) return t;
   try {
     Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
-    const std::vector<int> fr = s.free_parameters();
-    auto ks = known;
-    for (std::size_t k = 0; k < cand.parameters.size(); ++k) ks.emplace_back(cand.parameters[k], cand.scales[k]);
-    CalibrationOptions o;
-    o.scale = scales_for(cand.model, fr, ks);
-    o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
-    std::vector<Eigen::VectorXd> from = starts;
-    if (from.empty()) from.push_back(s.parameter_values());
-    if (cand.restart) {  // from the file's values: the calibrated nominal may be far off
-      Eigen::VectorXd p = s.parameter_values();
-      for (std::size_t i = 0; i < cand.model.parameters.size(); ++i)
-        if (const auto* orig = c.model.parameter(cand.model.parameters[i].name); orig && !cand.model.parameters[i].fixed)
-          p[static_cast<Eigen::Index>(i)] = orig->value;
-      from.push_back(p);
-    }
-    // Multi-start (the screening's best grid points, its least-squares step, the equation-error
-    // estimate); each with the budget of 80 Jacobians: with 30 the Stribeck law (three parameters
-    // on a rough cost) stopped at a third of the misfit reduction it reaches.
-    CalibrationResult best;
-    for (const auto& p : from) {
-      const auto r = calibrate(s, p, fr, o);
-      if (r.ok && (!best.ok || r.cost < best.cost)) best = r;
-    }
-    if (!best.ok) return t;
-
     t.ok = true;
     t.cost = best.cost;
     t.model = cand.model;
@@ -114,17 +137,61 @@ Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::V
         if (std::isfinite(v) && !(v >= t.cost_neutral)) t.cost_neutral = v;
     }
   } catch (const std::exception&) {
-    t.ok = false;  // a hypothesis that cannot be simulated loses
+    t = Trial();
+    t.cand = cand;  // a hypothesis that cannot be simulated loses
   }
   return t;
 }
 
-template <class Job>
-void parallel(int threads, std::size_t jobs, Job job) {
-  std::atomic<std::size_t> next{0};
-  run_worker_threads(threads, [&] {
-    for (std::size_t i; (i = next++) < jobs;) job(i);
+// Output-error calibration of each hypothesis from each of its starts (the best kept), then its
+// cost with its own term switched off at the calibrated point. Every (hypothesis, start) pair is
+// one job of the worker pool, so both threads stay busy to the end of the round; the result is
+// the serial one (the best start in start order, a hypothesis lost when any of its starts throws).
+std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypotheses, const Scales& known) {
+  const std::size_t n = hypotheses.size();
+  std::vector<Setup> setups(n);
+  std::vector<std::pair<std::size_t, std::size_t>> jobs;  // (hypothesis, start)
+  for (std::size_t i = 0; i < n; ++i) {
+    try {
+      setups[i] = setup_of(c, hypotheses[i], known);
+    } catch (const std::exception&) {
+      continue;
+    }
+    for (std::size_t k = 0; k < setups[i].from.size(); ++k) jobs.emplace_back(i, k);
+  }
+  struct Outcome {
+    CalibrationResult r;
+    bool threw = false;
+  };
+  std::vector<Outcome> out(jobs.size());
+  parallel(c.options.threads, jobs.size(), [&](std::size_t j) {
+    const auto [i, k] = jobs[j];
+    try {
+      const Simulator s(hypotheses[i].cand->model, c.estimation, {c.options.screening_substeps});
+      out[j].r = calibrate(s, setups[i].from[k], setups[i].free, setups[i].options);
+    } catch (const std::exception&) {
+      out[j].threw = true;
+    }
   });
+  std::vector<CalibrationResult> best(n);
+  std::vector<bool> lost(n, false);
+  for (std::size_t i = 0; i < n; ++i) lost[i] = !setups[i].ok;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const std::size_t i = jobs[j].first;
+    const CalibrationResult& r = out[j].r;
+    lost[i] = lost[i] || out[j].threw;
+    if (r.ok && (!best[i].ok || r.cost < best[i].cost)) best[i] = r;
+  }
+  std::vector<Trial> trials(n);
+  parallel(c.options.threads, n, [&](std::size_t i) {
+    if (lost[i]) best[i].ok = false;
+    trials[i] = finish(c, *hypotheses[i].cand, best[i]);
+  });
+  return trials;
+}
+
+Trial refine(const Context& c, const Candidate& cand, const std::vector<Eigen::VectorXd>& starts, const Scales& known) {
+  return refine(c, std::vector<ToRefine>{{&cand, starts}}, known).front();
 }
 
 // The delay grid is coarse: every whole number of samples between the screened one's neighbours
@@ -310,14 +377,12 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     c.say("  refining by output error: " + names);
     // The null hypothesis: the current model calibrated with the same budget. A hypothesis must
     // beat it, so that a better optimum of the old parameters is not credited to a new effect.
-    std::vector<Trial> trials(list.size() + 1);
     Candidate null;
     null.model = h.current;
-    parallel(opt.threads, trials.size(), [&](std::size_t i) {
-      trials[i] = i == 0 ? refine(c, null, {values_of(h.current)}, h.known_scales)
-                         : refine(c, list[i - 1]->candidate, list[i - 1]->starts, h.known_scales);
-      if (i > 0) trials[i].screening_gain = list[i - 1]->gain;
-    });
+    std::vector<ToRefine> to_refine{{&null, {values_of(h.current)}}};
+    for (const auto* l : list) to_refine.push_back({&l->candidate, l->starts});
+    std::vector<Trial> trials = refine(c, to_refine, h.known_scales);
+    for (std::size_t i = 1; i < trials.size(); ++i) trials[i].screening_gain = list[i - 1]->gain;
     d.hypotheses_refined += static_cast<int>(list.size());
     double cost_cur = 1e300, cost_cur_val = kNaN;
     if (trials.front().ok) {
@@ -379,8 +444,9 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
             if (!dup) extra.push_back(std::move(k));
           }
     }
-    std::vector<Trial> baselines(extra.size());
-    parallel(opt.threads, extra.size(), [&](std::size_t i) { baselines[i] = refine(c, extra[i], {values_of(extra[i].model)}, h.known_scales); });
+    std::vector<ToRefine> extra_to_refine;
+    for (const auto& e : extra) extra_to_refine.push_back({&e, {values_of(e.model)}});
+    const std::vector<Trial> baselines = refine(c, extra_to_refine, h.known_scales);
     std::vector<const Trial*> special_cases;
     for (std::size_t j = 1; j < trials.size(); ++j)
       if (trials[j].ok) special_cases.push_back(&trials[j]);
