@@ -27,6 +27,7 @@ DenseLp::DenseLp(int num_variables) : n_(num_variables) {
   col_hi_.setConstant(n_, inf);
   c_.setZero(n_);
   col_in_.assign(static_cast<std::size_t>(n_), 0);
+  A_.resize(0, n_);  // 0 x n, not 0 x 0: A^T y and A x must have n columns before the first row
 }
 
 void DenseLp::add_row(const Eigen::Ref<const Eigen::VectorXd>& a, double lo, double hi) {

@@ -154,6 +154,22 @@ TEST(DenseLp, EmptySetIsNeverReportedOptimal) {
   EXPECT_EQ(s->status, LpStatus::infeasible);
 }
 
+TEST(DenseLp, BoundsAloneWithoutRows) {
+  // No row yet (row generation starts from the box): the optimum is a corner of the bounds, the
+  // reduced costs are the costs themselves (no row multipliers).
+  DenseLp lp(2);
+  lp.set_variable_bounds(0, -1, 2);
+  lp.set_variable_bounds(1, 0, 3);
+  lp.set_objective(Eigen::Vector2d(1, -2), Sense::minimize);
+  const auto s = lp.solve();
+  ASSERT_TRUE(s.has_value());
+  ASSERT_EQ(s->status, LpStatus::optimal);
+  EXPECT_EQ(s->x, Eigen::Vector2d(-1, 3));
+  EXPECT_EQ(s->row_dual.size(), 0);
+  ASSERT_EQ(s->reduced_cost.size(), 2);
+  EXPECT_EQ(s->reduced_cost, Eigen::Vector2d(1, -2));
+}
+
 TEST(DenseLp, UnboundedDirectionIsReported) {
   // A strip |x - y| <= 1 is unbounded along (1, 1) and bounded in x - y.
   DenseLp lp(2);
