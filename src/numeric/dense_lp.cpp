@@ -67,16 +67,6 @@ void DenseLp::set_objective(const Eigen::Ref<const Eigen::VectorXd>& c, Sense se
 
 // ---------------------------------------------------------------- constraints
 
-double DenseLp::lower(int k) const { return k >= 0 ? lo_[k] : col_lo_[-1 - k]; }
-double DenseLp::upper(int k) const { return k >= 0 ? hi_[k] : col_hi_[-1 - k]; }
-double DenseLp::norm(int k) const { return k >= 0 ? norm_[k] : 1.0; }
-bool DenseLp::in_basis(int k) const {
-  return k >= 0 ? row_in_[static_cast<std::size_t>(k)] != 0 : col_in_[static_cast<std::size_t>(-1 - k)] != 0;
-}
-void DenseLp::set_in_basis(int k, bool in) {
-  (k >= 0 ? row_in_[static_cast<std::size_t>(k)] : col_in_[static_cast<std::size_t>(-1 - k)]) = in ? 1 : 0;
-}
-
 // ---------------------------------------------------------------- the simplex
 
 // Every column at the bound its cost pushes it to: dual feasible for any cost. An infinite
@@ -124,11 +114,9 @@ int DenseLp::most_violated(const Eigen::VectorXd& x, int& side) const {
   const double xscale = std::max(1.0, x.lpNorm<Eigen::Infinity>());
   int best = kNone;
   double best_score = 0;
-  const auto consider = [&](int k, double v) {
-    const double lo = lower(k), hi = upper(k), nk = norm(k);
+  const auto consider = [&](int k, double v, double lo, double hi, double nk) {
     const double below = lo - v, above = v - hi;
     const double viol = std::max(below, above);
-    if (!(viol > 0)) return;
     const double tol = kPrimalTol * std::max({1.0, std::abs(below > above ? lo : hi), nk * xscale});
     if (viol <= tol) return;
     const double score = nk > 0 ? viol / nk : viol;
@@ -138,24 +126,28 @@ int DenseLp::most_violated(const Eigen::VectorXd& x, int& side) const {
       side = below > above ? 1 : -1;
     }
   };
+  // Most rows hold with room to spare: test that first, on the raw arrays.
+  const double *ax = ax_.data(), *lo = lo_.data(), *hi = hi_.data(), *nrm = norm_.data();
   for (int r = 0; r < m_; ++r)
-    if (!row_in_[static_cast<std::size_t>(r)]) consider(r, ax_[r]);
+    if ((ax[r] < lo[r] || ax[r] > hi[r]) && !row_in_[static_cast<std::size_t>(r)])
+      consider(r, ax[r], lo[r], hi[r], nrm[r]);
   for (int j = 0; j < n_; ++j)
-    if (!col_in_[static_cast<std::size_t>(j)]) consider(-1 - j, x[j]);
+    if ((x[j] < col_lo_[j] || x[j] > col_hi_[j]) && !col_in_[static_cast<std::size_t>(j)])
+      consider(-1 - j, x[j], col_lo_[j], col_hi_[j], 1.0);
   return best;
 }
 
 // Constraint q enters at the side it is violated on; the basic constraint whose multiplier
 // reaches zero first leaves (Harris' two passes: the largest pivot among the nearly first).
 bool DenseLp::dual_step(int q, int side) {
-  Eigen::VectorXd aq(n_);
   if (q >= 0) {
-    aq = A_.row(q).transpose();
+    aq_ = A_.row(q).transpose();
   } else {
-    aq.setZero();
-    aq[-1 - q] = 1;
+    aq_.setZero(n_);
+    aq_[-1 - q] = 1;
   }
-  const Eigen::VectorXd u = lu_.transpose().solve(aq);  // a_q = B^T u
+  u_ = lu_.transpose().solve(aq_);  // a_q = B^T u
+  const Eigen::VectorXd& u = u_;
   const double nq = norm(q), gscale = std::max(g_.lpNorm<Eigen::Infinity>(), 1e-300);
   // Multiplier i moves as mu_i - t * side * u_i and must keep the sign of its side.
   const auto rate = [&](int i) {
@@ -198,34 +190,37 @@ bool DenseLp::dual_step(int q, int side) {
 // and the first constraint met becomes active (Harris' two passes); r may flip to its other
 // bound. False: nothing blocks (the LP is unbounded).
 bool DenseLp::primal_step(int r, int direction) {
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(n_);
-  e[r] = direction;
-  const Eigen::VectorXd d = lu_.solve(e);
-  const Eigen::VectorXd ad = A_.topRows(m_) * d;
-  const double dscale = d.lpNorm<Eigen::Infinity>(), xscale = std::max(1.0, x_.lpNorm<Eigen::Infinity>());
+  e_.setZero(n_);
+  e_[r] = direction;
+  d_ = lu_.solve(e_);
+  ad_.noalias() = A_.topRows(m_) * d_;
+  const double dscale = d_.lpNorm<Eigen::Infinity>(), xscale = std::max(1.0, x_.lpNorm<Eigen::Infinity>());
   const auto ur = static_cast<std::size_t>(r);
-  // Step to constraint k's bound along d, with (Harris) or without tolerance; inf: never met.
-  const auto step = [&](int k, double v, double rk, double slack) {
-    const double nk = norm(k);
-    if (std::abs(rk) <= kPivotTol * nk * dscale) return inf;
-    const double bound = rk > 0 ? upper(k) : lower(k);
-    if (!std::isfinite(bound)) return inf;
-    const double tol = slack * kPrimalTol * std::max({1.0, std::abs(bound), nk * xscale});
-    return std::max(0.0, (bound - v + (rk > 0 ? tol : -tol)) / rk);
-  };
   const int k_r = basis_[ur];
   // r may reach its other bound (an artificial one: its finite bound, if any).
   const double other = direction > 0 ? upper(k_r) : lower(k_r);
   const bool may_flip = std::isfinite(other);
   const double flip_step = may_flip ? std::abs(other - rhs_[r]) : inf;
-  const auto each = [&](auto&& f) {
-    for (int k = 0; k < m_; ++k)
-      if (!row_in_[static_cast<std::size_t>(k)]) f(k, ax_[k], ad[k]);
-    for (int j = 0; j < n_; ++j)
-      if (!col_in_[static_cast<std::size_t>(j)]) f(-1 - j, x_[j], d[j]);
-  };
+  // Pass 1: tmax, the shortest step to a bound with (Harris') tolerance. Every constraint whose
+  // exact step may still be <= tmax is kept for pass 2 (tmax only shrinks, and the exact step
+  // is never longer than the tolerant one, so nothing pass 2 needs is dropped).
   double tmax = inf;
-  each([&](int k, double v, double rk) { tmax = std::min(tmax, step(k, v, rk, 1.0)); });
+  blocking_.clear();
+  const auto visit = [&](int k, double v, double rk, double lo, double hi, double nk) {
+    if (std::abs(rk) <= kPivotTol * nk * dscale) return;  // moves (nearly) parallel: never met
+    const double bound = rk > 0 ? hi : lo;
+    if (!std::isfinite(bound)) return;
+    const double exact = std::max(0.0, (bound - v) / rk);
+    if (exact > tmax) return;
+    const double tol = kPrimalTol * std::max({1.0, std::abs(bound), nk * xscale});
+    tmax = std::min(tmax, std::max(0.0, (bound - v + (rk > 0 ? tol : -tol)) / rk));
+    blocking_.push_back({k, exact, std::abs(rk) / std::max(nk, 1e-300), static_cast<signed char>(rk > 0 ? -1 : 1)});
+  };
+  const double *ax = ax_.data(), *ad = ad_.data(), *lo = lo_.data(), *hi = hi_.data(), *nrm = norm_.data();
+  for (int k = 0; k < m_; ++k)
+    if (!row_in_[static_cast<std::size_t>(k)]) visit(k, ax[k], ad[k], lo[k], hi[k], nrm[k]);
+  for (int j = 0; j < n_; ++j)
+    if (!col_in_[static_cast<std::size_t>(j)]) visit(-1 - j, x_[j], d_[j], col_lo_[j], col_hi_[j], 1.0);
   // r reaches its other bound before (or within the tolerance of) any other constraint: a flip.
   if (may_flip && flip_step <= tmax) {
     side_[ur] = static_cast<signed char>(direction > 0 ? -1 : 1);
@@ -233,17 +228,15 @@ bool DenseLp::primal_step(int r, int direction) {
     return true;
   }
   if (tmax == inf) return false;
+  // Pass 2: among the constraints met within tmax, the largest pivot.
   int enter = kNone, enter_side = 1;
   double best = 0;
-  each([&](int k, double v, double rk) {
-    if (step(k, v, rk, 0.0) > tmax) return;
-    const double size = std::abs(rk) / std::max(norm(k), 1e-300);
-    if (size > best) {
-      best = size;
-      enter = k;
-      enter_side = rk > 0 ? -1 : 1;
-    }
-  });
+  for (const Blocking& c : blocking_) {
+    if (c.step > tmax || !(c.size > best)) continue;
+    best = c.size;
+    enter = c.k;
+    enter_side = c.side;
+  }
   if (enter == kNone) return false;
   set_in_basis(k_r, false);
   basis_[ur] = enter;
@@ -265,7 +258,11 @@ LpSolution DenseLp::make_solution(LpStatus status) const {
   const double sign = sense_ == Sense::minimize ? 1.0 : -1.0;
   for (int i = 0; i < n_; ++i)
     if (basis_[static_cast<std::size_t>(i)] >= 0) s.row_dual[basis_[static_cast<std::size_t>(i)]] = sign * mu_[i];
-  s.reduced_cost = c_ - A_.topRows(m_).transpose() * s.row_dual;
+  s.reduced_cost = c_;  // c - A^T y, y nonzero only on the basic rows
+  for (int i = 0; i < n_; ++i) {
+    const int k = basis_[static_cast<std::size_t>(i)];
+    if (k >= 0) s.reduced_cost -= s.row_dual[k] * A_.row(k).transpose();
+  }
   return s;
 }
 
@@ -305,7 +302,7 @@ std::optional<LpSolution> DenseLp::solve() {
       restarted = true;
       continue;
     }
-    ax_ = A_.topRows(m_) * x_;
+    ax_.noalias() = A_.topRows(m_) * x_;
     // The basic constraint whose multiplier has the wrong sign by most (scaled to the cost).
     const double gscale = std::max(g_.lpNorm<Eigen::Infinity>(), 1e-300);
     int wrong = -1, artificial = -1;

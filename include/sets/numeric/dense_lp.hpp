@@ -49,11 +49,12 @@ class DenseLp {
 
  private:
   // A constraint is a row (k >= 0) or a column bound (k = -1 - j).
-  double lower(int k) const;
-  double upper(int k) const;
-  double norm(int k) const;
-  bool in_basis(int k) const;
-  void set_in_basis(int k, bool in);
+  double lower(int k) const { return k >= 0 ? lo_[k] : col_lo_[-1 - k]; }
+  double upper(int k) const { return k >= 0 ? hi_[k] : col_hi_[-1 - k]; }
+  double norm(int k) const { return k >= 0 ? norm_[k] : 1.0; }
+  void set_in_basis(int k, bool in) {
+    (k >= 0 ? row_in_[static_cast<std::size_t>(k)] : col_in_[static_cast<std::size_t>(-1 - k)]) = in ? 1 : 0;
+  }
 
   void cold_start(const Eigen::VectorXd& g);
   bool factorise();                                      // false: singular or ill-conditioned
@@ -83,6 +84,13 @@ class DenseLp {
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   Eigen::VectorXd x_, mu_, rhs_;
   Eigen::VectorXd ax_;       // A x for every row
+  Eigen::VectorXd aq_, u_, e_, d_, ad_;  // ratio-test work (kept: no allocation per iteration)
+  struct Blocking {          // a constraint the primal step may meet (see primal_step)
+    int k;
+    double step, size;
+    signed char side;
+  };
+  std::vector<Blocking> blocking_;
   int iterations_ = 0;
 };
 
