@@ -25,6 +25,30 @@ namespace sets {
 FeasibleParameterSet::FeasibleParameterSet(int dimension) : p_(dimension) {
   if (dimension <= 0) throw InputError("FeasibleParameterSet: dimension must be positive");
   Phi_.resize(0, dimension);
+  col_largest_.setZero(dimension);
+  col_smallest_.setConstant(dimension, inf);
+}
+
+void FeasibleParameterSet::track_magnitudes(Eigen::Index t) {
+  for (Eigen::Index j = 0; j < p_; ++j)
+    for (double a : {std::abs(Phi_(t, j).lower()), std::abs(Phi_(t, j).upper())}) {
+      col_largest_[j] = std::max(col_largest_[j], a);
+      if (a > 0) col_smallest_[j] = std::min(col_smallest_[j], a);
+    }
+}
+
+Eigen::VectorXd FeasibleParameterSet::column_scales() const {
+  Eigen::VectorXd d = Eigen::VectorXd::Ones(p_);
+  for (int j = 0; j < p_; ++j) {
+    if (!(col_largest_[j] > 0)) continue;
+    const int k = -std::ilogb(col_largest_[j]);  // d_j = 2^k
+    // a 2^k is exact while its exponent stays in the normal range; the largest entry lands in
+    // [1, 2), so only the smallest can fall out (below it).
+    if (k <= std::numeric_limits<double>::max_exponent - 1 &&
+        std::ilogb(col_smallest_[j]) + k >= std::numeric_limits<double>::min_exponent - 1)
+      d[j] = std::ldexp(1.0, k);
+  }
+  return d;
 }
 
 FeasibleParameterSet FeasibleParameterSet::from_data(const Eigen::Ref<const Eigen::MatrixXd>& Phi,
@@ -54,6 +78,7 @@ FeasibleParameterSet FeasibleParameterSet::from_data(const Eigen::Ref<const Eige
       throw InputError("FeasibleParameterSet: sample " + std::to_string(t) +
                        ", error bound delta must be finite and >= 0 (got " + std::to_string(delta[t]) + ")");
     f.Y_[t] = interval_around(y[t], delta[t]);
+    f.track_magnitudes(t);
   }
   return f;
 }
@@ -69,18 +94,19 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
   // Same checks as add_strip, one allocation.
   for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
-    const std::string where = "FeasibleParameterSet: sample " + std::to_string(t);
+    const auto where = [t] { return "FeasibleParameterSet: sample " + std::to_string(t); };
     for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
       if (!std::isfinite(Phi(t, j).lower()) || !std::isfinite(Phi(t, j).upper()))
-        throw InputError(where + ", regressor entry " + std::to_string(j) + " is not finite");
+        throw InputError(where() + ", regressor entry " + std::to_string(j) + " is not finite");
       if (Phi(t, j).lower() != Phi(t, j).upper()) f.eiv_ = true;
     }
     if (!std::isfinite(Y[t].lower()) || !std::isfinite(Y[t].upper()))
-      throw InputError(where + ", output bound is not finite");
+      throw InputError(where() + ", output bound is not finite");
   }
   f.Phi_ = Phi;
   f.Y_ = Y;
   f.n_ = Phi.rows();
+  for (Eigen::Index t = 0; t < Phi.rows(); ++t) f.track_magnitudes(t);
   return f;
 }
 
@@ -111,6 +137,7 @@ void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& 
   }
   Phi_.row(n_) = Phi.transpose();
   Y_[n_] = Y;
+  track_magnitudes(n_);
   ++n_;
 }
 
@@ -199,8 +226,13 @@ namespace {
 // violated, the relaxation's optimum is the full optimum (tightness is not lost).
 class OrthantLp {
  public:
-  OrthantLp(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options)
-      : lp_(fps.dimension()), in_(static_cast<std::size_t>(fps.size()), 0), warm_(options.warm_start) {
+  /// `scale`: the LP is in z = theta ./ scale (column j of every row times scale_j, exact: see
+  /// FeasibleParameterSet::column_scales), so every column has entries of size ~1.
+  OrthantLp(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const Orthant& s, const PuiOptions& options)
+      : lp_(fps.dimension()),
+        in_(static_cast<std::size_t>(fps.size()), 0),
+        warm_(options.warm_start),
+        point_rows_(!fps.has_interval_regressors()) {
     if (options.solver == PuiLpSolver::dense) dense_.emplace(fps.dimension());
     const bool working_set = options.working_set;
     const int p = fps.dimension(), N = fps.size();
@@ -211,17 +243,28 @@ class OrthantLp {
       else
         lp_.set_variable_bounds(j, -inf, 0);
     }
+    // Column by column (the regressors are stored by column): the end of each entry that
+    // minimises (lo_) and maximises (hi_) phi_j theta_j in the orthant; one matrix for point
+    // regressors, where both are the same.
+    const auto Phi = fps.regressors();
     lo_.resize(N, p);
-    hi_.resize(N, p);
+    if (!point_rows_) hi_.resize(N, p);
+    for (int j = 0; j < p; ++j) {
+      const bool pos = s.empty() || s[static_cast<std::size_t>(j)] > 0;
+      const double f = scale[j];
+      for (int t = 0; t < N; ++t) {
+        const double a = Phi(t, j).lower() * f, b = Phi(t, j).upper() * f;
+        lo_(t, j) = pos ? a : b;
+        if (!point_rows_) hi_(t, j) = pos ? b : a;
+      }
+    }
     ylo_.resize(N);
     yhi_.resize(N);
-    Eigen::VectorXd lo_row, hi_row;
+    tol_.resize(N);
     for (int t = 0; t < N; ++t) {
-      orthant_rows(fps.regressors(), t, s, lo_row, hi_row);
-      lo_.row(t) = lo_row.transpose();
-      hi_.row(t) = hi_row.transpose();
       ylo_[t] = fps.outputs()[t].lower();
       yhi_[t] = fps.outputs()[t].upper();
+      tol_[t] = 1e-9 * (1 + std::abs(yhi_[t]) + std::abs(ylo_[t]));
     }
     const int start = working_set ? std::min(N, 10 * p + 10) : N;
     if (start == N) {
@@ -246,8 +289,8 @@ class OrthantLp {
       return e;
     };
     for (Eigen::Index t = 0; t < lo_.rows(); ++t) {
-      const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
-      if (lo_row == hi_row) {
+      const Eigen::VectorXd lo_row = lo_.row(t).transpose();
+      if (point_row(t)) {
         r.entries.push_back(row(lo_row));
         r.lo.push_back(ylo_[t]);
         r.hi.push_back(yhi_[t]);
@@ -255,7 +298,7 @@ class OrthantLp {
         r.entries.push_back(row(lo_row));
         r.lo.push_back(-inf);
         r.hi.push_back(yhi_[t]);
-        r.entries.push_back(row(hi_row));
+        r.entries.push_back(row(hi_.row(t).transpose()));
         r.lo.push_back(ylo_[t]);
         r.hi.push_back(inf);
       }
@@ -303,27 +346,30 @@ class OrthantLp {
     if (dense_) dense_->add_row(a, lo, hi);
   }
 
+  bool point_row(Eigen::Index t) const { return point_rows_ || lo_.row(t) == hi_.row(t); }
+
   void add_sample(int t) {
     in_[static_cast<std::size_t>(t)] = 1;
     ++added_;
-    const Eigen::VectorXd lo_row = lo_.row(t).transpose(), hi_row = hi_.row(t).transpose();
-    if (lo_row == hi_row) {
+    const Eigen::VectorXd lo_row = lo_.row(t).transpose();
+    if (point_row(t)) {
       add_row(lo_row, ylo_[t], yhi_[t]);
     } else {
       add_row(lo_row, -inf, yhi_[t]);
-      add_row(hi_row, ylo_[t], inf);
+      add_row(hi_.row(t).transpose(), ylo_[t], inf);
     }
   }
 
-  // Adds the samples the point x violates most; returns how many were added.
+  // Adds the samples the point x violates most; returns how many were added. One N x p product
+  // for point regressors, two for interval ones.
   int add_violated(const Eigen::VectorXd& x) {
-    const Eigen::VectorXd a = lo_ * x, b = hi_ * x;
+    a_.noalias() = lo_ * x;
+    if (!point_rows_) b_.noalias() = hi_ * x;
+    const Eigen::VectorXd& b = point_rows_ ? a_ : b_;
     std::vector<std::pair<double, int>> violated;
-    for (Eigen::Index t = 0; t < a.size(); ++t) {
-      if (in_[static_cast<std::size_t>(t)]) continue;
-      const double v = std::max(a[t] - yhi_[t], ylo_[t] - b[t]);
-      const double tol = 1e-9 * (1 + std::abs(yhi_[t]) + std::abs(ylo_[t]));
-      if (v > tol) violated.emplace_back(v, static_cast<int>(t));
+    for (Eigen::Index t = 0; t < a_.size(); ++t) {
+      const double v = std::max(a_[t] - yhi_[t], ylo_[t] - b[t]);
+      if (v > tol_[t] && !in_[static_cast<std::size_t>(t)]) violated.emplace_back(v, static_cast<int>(t));
     }
     const std::size_t k = std::min<std::size_t>(violated.size(), 60 + 4 * static_cast<std::size_t>(x.size()));
     std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(k), violated.end(),
@@ -338,8 +384,10 @@ class OrthantLp {
   bool warm_;
   int added_ = 0;
   int fallbacks_ = 0;
-  Eigen::MatrixXd lo_, hi_;  // orthant rows of every sample
-  Eigen::VectorXd ylo_, yhi_;
+  bool point_rows_;          // no interval regressors: hi_ is not built (it would equal lo_)
+  Eigen::MatrixXd lo_, hi_;  // orthant rows of every sample (scaled)
+  Eigen::VectorXd ylo_, yhi_, tol_;
+  Eigen::VectorXd a_, b_;    // lo_ x and hi_ x of the last violation check
 };
 
 struct OrthantOutcome {
@@ -417,18 +465,27 @@ std::optional<IntervalVector> strip_box(const FeasibleParameterSet& fps) {
   return box;
 }
 
+// strip_box in the scaled coordinates z = theta ./ scale (outward).
+std::optional<IntervalVector> scaled_strip_box(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale) {
+  std::optional<IntervalVector> box = strip_box(fps);
+  if (box)
+    for (Eigen::Index j = 0; j < box->size(); ++j) (*box)[j] /= Interval(scale[j]);
+  return box;
+}
+
 // Recovery for ends the LPs left infinite (GLPK's "unbounded" on a set that strip_box proves
 // bounded, or an extent that could not be certified): per end, the tighter of the proven box
 // and a safe bound of the LP over it. The box is a true bound of the set, so any multipliers
 // give a valid bound over it (no artificial faces, no all-or-nothing certification); an LP that
 // fails leaves the box's end. Directions get the box's support where they had none.
-void bound_infinite_ends(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
-                         const std::vector<Eigen::VectorXd>& directions, detail::Extent& e, int& lps) {
+void bound_infinite_ends(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const Orthant& s,
+                         const PuiOptions& options, const std::vector<Eigen::VectorXd>& directions, detail::Extent& e,
+                         int& lps) {
   if (lower(make_box(e.lo, e.hi)).allFinite() && upper(make_box(e.lo, e.hi)).allFinite()) return;
-  const std::optional<IntervalVector> box = strip_box(fps);
+  const std::optional<IntervalVector> box = scaled_strip_box(fps, scale);
   if (!box) return;
   const int p = fps.dimension();
-  OrthantLp o(fps, s, options);
+  OrthantLp o(fps, scale, s, options);
   for (int j = 0; j < p; ++j) {
     const double lo = std::max((*box)[j].lower(), o.lp().variable_lower(j));
     const double hi = std::min((*box)[j].upper(), o.lp().variable_upper(j));
@@ -455,15 +512,17 @@ void bound_infinite_ends(const FeasibleParameterSet& fps, const Orthant& s, cons
   e.certified = true;  // every end is now a safe bound or an end of the proven box
 }
 
-OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, const PuiOptions& options,
-                             const std::vector<Eigen::VectorXd>& directions) {
-  OrthantLp o(fps, s, options);
+// One orthant piece, in the scaled coordinates z = theta ./ scale (boxes, points and maxima; the
+// directions are already scaled).
+OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const Orthant& s,
+                             const PuiOptions& options, const std::vector<Eigen::VectorXd>& directions) {
+  OrthantLp o(fps, scale, s, options);
   // The orthant's sign constraints are variable bounds of the LP, so ends on a coordinate face
   // are exact and need no artificial face there.
   detail::Extent e =
       detail::certified_extent(o.lp(), [&](int& lps) { return o.solve(lps); }, directions, options.safe);
   int lps = e.lps;
-  if (options.safe && e.status == detail::ExtentStatus::feasible) bound_infinite_ends(fps, s, options, directions, e, lps);
+  if (options.safe && e.status == detail::ExtentStatus::feasible) bound_infinite_ends(fps, scale, s, options, directions, e, lps);
   OrthantOutcome out;
   out.lps = lps;
   out.fallbacks = o.fallbacks();
@@ -472,7 +531,7 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
                                                           : OrthantStatus::unknown;
   if (out.status == OrthantStatus::unknown && options.safe) {
     // Undecided, but a proven box still bounds whatever of the set there is.
-    if (const std::optional<IntervalVector> box = strip_box(fps)) out.box = *box;
+    if (const std::optional<IntervalVector> box = scaled_strip_box(fps, scale)) out.box = *box;
   }
   if (out.status != OrthantStatus::feasible) return out;
   out.float_lo = e.float_lo;
@@ -489,10 +548,11 @@ OrthantOutcome solve_orthant(const FeasibleParameterSet& fps, const Orthant& s, 
   // too skewed).
   const Eigen::VectorXd mean = 0.5 * (e.lower_points.rowwise().mean() + e.upper_points.rowwise().mean());
   const Eigen::VectorXd centre = 0.5 * (e.float_lo + e.float_hi);
+  // theta = D z need not be exactly D times the LP's point: any point proven inside will do.
   for (const Eigen::VectorXd& x : {mean, centre})
-    if (!out.witness && x.allFinite()) out.witness = fps.contains(x) == BoolInterval::yes;
+    if (!out.witness && x.allFinite()) out.witness = fps.contains(scale.cwiseProduct(x)) == BoolInterval::yes;
   if (!out.witness) {  // skewed piece, or ends not computed (support only): its inscribed ball's centre
-    const std::optional<Eigen::VectorXd> x = inscribed_centre(fps, s);
+    const std::optional<Eigen::VectorXd> x = inscribed_centre(fps, s);  // unscaled
     out.witness = x && fps.contains(*x) == BoolInterval::yes;
   }
   if (!out.witness) {
@@ -541,8 +601,9 @@ std::vector<Orthant> all_orthants(int p) {
 namespace {
 
 // PUIs and, from the same LPs, bounds on max d^T theta for each direction (`maxima`): the
-// maximum over the orthant pieces that pui() visits. `fps` is column-scaled (see explore()).
-PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& options,
+// maximum over the orthant pieces that pui() visits. Everything it returns is in the scaled
+// coordinates z = theta ./ scale, and so are `directions` (see explore()).
+PuiResult explore_scaled(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const PuiOptions& options,
                          const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima) {
   const int p = fps.dimension();
   maxima.assign(directions.size(), -inf);
@@ -588,9 +649,9 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
 
   bool searched_everywhere = true;  // every orthant that may hold part of the set was visited
   if (!fps.has_interval_regressors()) {
-    absorb({}, solve_orthant(fps, {}, options, directions));
+    absorb({}, solve_orthant(fps, scale, {}, options, directions));
   } else if (options.orthants == OrthantSelection::all) {
-    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, s, options, directions));
+    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, scale, s, options, directions));
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
     // (theta_l = 0), the set may continue into the orthant across that face. An undecided
@@ -600,7 +661,7 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
     while (!queue.empty()) {
       Orthant s = queue.front();
       queue.pop_front();
-      const OrthantOutcome oc = solve_orthant(fps, s, options, directions);
+      const OrthantOutcome oc = solve_orthant(fps, scale, s, options, directions);
       absorb(s, oc);
       if (oc.status == OrthantStatus::empty) continue;
       double scale = 1;
@@ -626,7 +687,7 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
     if (!have_box) {
       if (p <= 16) {
         for (const Orthant& s : all_orthants(p))
-          if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options, directions));
+          if (!seen.count(s)) absorb(s, solve_orthant(fps, scale, s, options, directions));
       } else {
         searched_everywhere = false;
       }
@@ -679,23 +740,17 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
 // the reduced-cost tolerance and it stopped at a wrong vertex (PUI intervals of width 0 that
 // missed the truth, soundness campaign seeds 752, 4112, 4502, 9087, 9662). The scaled problem
 // is the same set exactly: a_tj d_j and the scaled directions' dir_j d_j are exact unless they
-// leave the normal range, and then that column keeps d_j = 1.
+// leave the normal range, and then that column keeps d_j = 1. The set keeps its columns'
+// magnitudes up to date, so this costs O(p) and nothing is copied: the orthant LPs scale their
+// rows as they build them.
 Eigen::VectorXd column_scales(const FeasibleParameterSet& fps, const std::vector<Eigen::VectorXd>& directions) {
-  const auto Phi = fps.regressors();
-  const int p = fps.dimension();
-  Eigen::VectorXd d = Eigen::VectorXd::Ones(p);
-  const auto exact = [](double a, double f) { return a == 0 || std::isnormal(a * f); };
-  for (int j = 0; j < p; ++j) {
-    double big = 0;
-    for (Eigen::Index t = 0; t < Phi.rows(); ++t)
-      big = std::max({big, std::abs(Phi(t, j).lower()), std::abs(Phi(t, j).upper())});
-    if (!(big > 0) || !std::isfinite(big)) continue;
-    const double f = std::ldexp(1.0, -std::ilogb(big));
-    bool ok = true;
-    for (Eigen::Index t = 0; ok && t < Phi.rows(); ++t)
-      ok = exact(Phi(t, j).lower(), f) && exact(Phi(t, j).upper(), f);
-    for (std::size_t k = 0; ok && k < directions.size(); ++k) ok = exact(directions[k][j], f);  // d^T theta = (D d)^T z
-    if (ok) d[j] = f;
+  Eigen::VectorXd d = fps.column_scales();
+  for (Eigen::Index j = 0; j < d.size(); ++j) {
+    const int k = std::ilogb(d[j]);  // d_j = 2^k
+    for (const auto& dir : directions)  // d^T theta = (D d)^T z
+      if (dir[j] != 0 && (std::ilogb(dir[j]) + k < std::numeric_limits<double>::min_exponent - 1 ||
+                          std::ilogb(dir[j]) + k > std::numeric_limits<double>::max_exponent - 1))
+        d[j] = 1;
   }
   return d;
 }
@@ -719,14 +774,10 @@ PuiResult explore(const FeasibleParameterSet& fps, const PuiOptions& options,
       throw InputError(std::string(what) + ": a direction has " + std::to_string(d.size()) + " entries, expected " +
                        std::to_string(p));
   const Eigen::VectorXd d = column_scales(fps, directions);
-  if ((d.array() == 1).all()) return explore_scaled(fps, options, directions, maxima);
-  IntervalMatrix Phi = fps.regressors();
-  for (Eigen::Index t = 0; t < Phi.rows(); ++t)
-    for (int j = 0; j < p; ++j) Phi(t, j) = Interval(Phi(t, j).lower() * d[j], Phi(t, j).upper() * d[j]);
   std::vector<Eigen::VectorXd> scaled_directions;  // d^T theta = (D d)^T z
   for (const auto& dir : directions) scaled_directions.push_back(dir.cwiseProduct(d));
-  PuiResult r = explore_scaled(FeasibleParameterSet::from_interval_data(Phi, fps.outputs()), options,
-                               scaled_directions, maxima);
+  PuiResult r = explore_scaled(fps, d, options, scaled_directions, maxima);
+  if ((d.array() == 1).all()) return r;
   if (r.empty()) return r;
   r.box = unscale(r.box, d);
   r.unreliable_box = unscale(r.unreliable_box, d);

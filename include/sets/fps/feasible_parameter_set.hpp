@@ -54,6 +54,11 @@ class FeasibleParameterSet {
   BoolInterval contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const;
   /// Least squares on the central regressors and outputs (no guarantee; a starting point).
   Eigen::VectorXd least_squares() const;
+  /// Per column j, 2^-e_j with 2^e_j <= max_t |regressor end| < 2^(e_j+1): multiplying the
+  /// column by it is exact (no entry leaves the normal range), so the scaled column has entries
+  /// of size ~1; 1 where that is not so (an all-zero column, or entries spread over more than
+  /// the normal exponent range). Kept up to date as strips are added: O(p) to read.
+  Eigen::VectorXd column_scales() const;
   /// The exact H-polytope of the set inside one orthant (sign constraints included). Its
   /// coefficients are doubles taken from the interval ends, so it contains the true set.
   HPolytope orthant_polytope(const Orthant& orthant) const;
@@ -64,6 +69,9 @@ class FeasibleParameterSet {
   Eigen::Index n_ = 0;  // samples; the rows of Phi_ and Y_ beyond n_ are spare capacity
   IntervalMatrix Phi_;  // capacity x p
   IntervalVector Y_;    // capacity
+  // Per column: the largest and the smallest nonzero |regressor end| (column_scales()).
+  Eigen::VectorXd col_largest_, col_smallest_;
+  void track_magnitudes(Eigen::Index t);  // of stored row t
 };
 
 enum class OrthantSelection {
