@@ -400,11 +400,12 @@ TEST(FeasibleParameterSet, AddStripBuildsTheSameSetAsFromData) {
 // and they follow the strips as they are added (the same whether built in bulk or strip by strip).
 TEST(FeasibleParameterSet, ColumnScalesArePowersOfTwoThatKeepEveryEntryExact) {
   const double tiny = std::ldexp(1.0, -1070);  // subnormal
-  Eigen::MatrixXd Phi(3, 4);
+  Eigen::MatrixXd Phi(4, 4);
   Phi << 3e-10, 0, 5e12, 4.0,
          -1e-11, 0, 1.0, tiny,
-         2e-10, 0, -7e11, 0.5;
-  const Eigen::Vector3d y(1, 2, 3), delta = Eigen::Vector3d::Constant(0.1);
+         2e-10, 0, -7e11, 0.5,
+         1e-10, 0, 2.0, 1.0;
+  const Eigen::Vector4d y(1, 2, 3, 4), delta = Eigen::Vector4d::Constant(0.1);
   const auto bulk = FeasibleParameterSet::from_data(Phi, y, delta);
   const Eigen::VectorXd d = bulk.column_scales();
   ASSERT_EQ(d.size(), 4);
@@ -413,12 +414,12 @@ TEST(FeasibleParameterSet, ColumnScalesArePowersOfTwoThatKeepEveryEntryExact) {
     EXPECT_EQ(d[j], std::ldexp(1.0, -std::ilogb(big))) << j;
     EXPECT_GE(big * d[j], 1.0);
     EXPECT_LT(big * d[j], 2.0);
-    for (int t = 0; t < 3; ++t) EXPECT_EQ(Phi(t, j) * d[j] / d[j], Phi(t, j));  // exact
+    for (int t = 0; t < 4; ++t) EXPECT_EQ(Phi(t, j) * d[j] / d[j], Phi(t, j));  // exact
   }
   EXPECT_EQ(d[1], 1.0);  // all zero
   EXPECT_EQ(d[3], 1.0);  // 1/4 would round the subnormal entry
   FeasibleParameterSet grown(4);
-  for (int t = 0; t < 3; ++t) {
+  for (int t = 0; t < 4; ++t) {
     grown.add_strip(Phi.row(t).transpose(), y[t], delta[t]);
     EXPECT_EQ(grown.column_scales()[2], std::ldexp(1.0, -std::ilogb(Phi.col(2).head(t + 1).cwiseAbs().maxCoeff())));
   }
@@ -428,7 +429,7 @@ TEST(FeasibleParameterSet, ColumnScalesArePowersOfTwoThatKeepEveryEntryExact) {
   wide << 1e300, tiny;
   const auto w = FeasibleParameterSet::from_data(wide, Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 1));
   EXPECT_EQ(w.column_scales()[0], 1.0);
-  wide(1, 0) = 1e-10;  // within range: scaled
+  wide(1, 0) = 1e-5;  // 2^-996 * 1e-5 is still normal: scaled
   EXPECT_EQ(FeasibleParameterSet::from_data(wide, Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 1)).column_scales()[0],
             std::ldexp(1.0, -std::ilogb(1e300)));
 }
