@@ -102,9 +102,11 @@ bool DenseLp::factorise() {
                              : (side_[u] > 0 ? lower(k) : upper(k));
   }
   lu_.compute(B_);
-  if (!(lu_.rcond() > kMinRcond)) return false;
-  x_ = lu_.solve(rhs_);
-  mu_ = lu_.transpose().solve(g_);
+  Binv_ = lu_.inverse();
+  const auto norm1 = [](const Eigen::MatrixXd& M) { return M.cwiseAbs().colwise().sum().maxCoeff(); };
+  if (!(1 / (norm1(B_) * norm1(Binv_)) > kMinRcond)) return false;  // NaN (singular) fails too
+  x_.noalias() = Binv_ * rhs_;
+  mu_.noalias() = Binv_.transpose() * g_;
   return x_.allFinite() && mu_.allFinite();
 }
 
@@ -146,7 +148,7 @@ bool DenseLp::dual_step(int q, int side) {
     aq_.setZero(n_);
     aq_[-1 - q] = 1;
   }
-  u_ = lu_.transpose().solve(aq_);  // a_q = B^T u
+  u_.noalias() = Binv_.transpose() * aq_;  // a_q = B^T u
   const Eigen::VectorXd& u = u_;
   const double nq = norm(q), gscale = std::max(g_.lpNorm<Eigen::Infinity>(), 1e-300);
   // Multiplier i moves as mu_i - t * side * u_i and must keep the sign of its side.
@@ -190,9 +192,7 @@ bool DenseLp::dual_step(int q, int side) {
 // and the first constraint met becomes active (Harris' two passes); r may flip to its other
 // bound. False: nothing blocks (the LP is unbounded).
 bool DenseLp::primal_step(int r, int direction) {
-  e_.setZero(n_);
-  e_[r] = direction;
-  d_ = lu_.solve(e_);
+  d_ = direction * Binv_.col(r);  // B d = direction e_r
   ad_.noalias() = A_.topRows(m_) * d_;
   const double dscale = d_.lpNorm<Eigen::Infinity>(), xscale = std::max(1.0, x_.lpNorm<Eigen::Infinity>());
   const auto ur = static_cast<std::size_t>(r);

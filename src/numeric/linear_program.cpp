@@ -37,18 +37,28 @@ int glpk_bound_type(double lo, double hi) {
   return GLP_DB;
 }
 
-void check_bounds(double lo, double hi, const std::string& what) {
-  if (std::isnan(lo) || std::isnan(hi) || lo > hi || lo == inf || hi == -inf)
-    throw InputError(what + ": invalid bounds [" + show(lo) + ", " + show(hi) + "]");
-  for (double b : {lo, hi})
-    if (std::isfinite(b) && std::abs(b) > kMaxMagnitude)
-      throw InputError(what + ": bound " + show(b) + " is beyond +-1e150 (use an infinite bound instead)");
+// `what` names the bound or coefficient in the error: a string, or a function that makes one
+// (built only when there is an error: add_row is called once per LP row).
+std::string name(const std::string& what) { return what; }
+template <class F>
+std::string name(const F& what) {
+  return what();
 }
 
-void check_coefficient(double a, const std::string& what) {
-  if (!std::isfinite(a)) throw InputError(what + " is not finite");
+template <class What>
+void check_bounds(double lo, double hi, const What& what) {
+  if (std::isnan(lo) || std::isnan(hi) || lo > hi || lo == inf || hi == -inf)
+    throw InputError(name(what) + ": invalid bounds [" + show(lo) + ", " + show(hi) + "]");
+  for (double b : {lo, hi})
+    if (std::isfinite(b) && std::abs(b) > kMaxMagnitude)
+      throw InputError(name(what) + ": bound " + show(b) + " is beyond +-1e150 (use an infinite bound instead)");
+}
+
+template <class What>
+void check_coefficient(double a, const What& what) {
+  if (!std::isfinite(a)) throw InputError(name(what) + " is not finite");
   if (a != 0 && (std::abs(a) > kMaxMagnitude || std::abs(a) < kMinMagnitude))
-    throw InputError(what + " = " + show(a) + " is outside the magnitudes the LP solver handles (1e-150..1e150)");
+    throw InputError(name(what) + " = " + show(a) + " is outside the magnitudes the LP solver handles (1e-150..1e150)");
 }
 
 // GLPK's limits are ints: clamp instead of overflowing.
@@ -87,6 +97,10 @@ struct LinearProgram::Impl {
   Sense sense = Sense::minimize;
   bool has_integer = false;
   bool scaled = false;  // GLPK holds scale factors (only inside a recovering solve())
+  // Rows reach GLPK only when GLPK is next used (prob()): callers that solve elsewhere (the
+  // dense simplex of pui()) and keep this object for its rows and safe bounds pay nothing for
+  // GLPK's copy (it was a fifth of a Cerone-Regruto PUI).
+  int loaded_rows = 0;
 
   Impl() { create(); }
   ~Impl() {
@@ -109,10 +123,12 @@ struct LinearProgram::Impl {
     lp = p;
     generation = glpk_environment_generation();
     scaled = false;
+    loaded_rows = 0;
   }
 
-  /// GLPK's problem, rebuilt (cold) if an internal error freed it.
-  glp_prob* prob() {
+  /// GLPK's problem with its columns (rows may be pending), rebuilt (cold) if an internal
+  /// error freed it: enough to change columns and the objective.
+  glp_prob* columns() {
     if (generation == glpk_environment_generation()) return lp;
     create();
     if (n() > 0) {
@@ -121,7 +137,12 @@ struct LinearProgram::Impl {
       call_glpk("LinearProgram", [p, count] { glp_add_cols(p, count); });
       for (int j = 0; j < n(); ++j) load_col(j);
     }
-    for (int i = 0; i < m(); ++i) load_row(i);
+    return lp;
+  }
+  /// GLPK's problem with every row loaded.
+  glp_prob* prob() {
+    columns();
+    for (; loaded_rows < m(); ++loaded_rows) load_row(loaded_rows);
     return lp;
   }
 
@@ -160,25 +181,17 @@ struct LinearProgram::Impl {
   }
 
   void push_row(std::vector<std::pair<int, double>> entries, double lo, double hi) {
-    const std::string what = "LinearProgram row " + std::to_string(m());
+    const auto what = [this] { return "LinearProgram row " + std::to_string(m()); };  // only for errors
     check_bounds(lo, hi, what);
     for (const auto& [j, a] : entries) {
-      if (j < 0 || j >= n()) throw InputError(what + ": column " + std::to_string(j) + " out of range");
-      check_coefficient(a, what + ": coefficient of column " + std::to_string(j));
+      if (j < 0 || j >= n()) throw InputError(what() + ": column " + std::to_string(j) + " out of range");
+      const int col = j;
+      check_coefficient(a, [&] { return what() + ": coefficient of column " + std::to_string(col); });
     }
-    prob();
     for (const auto& [j, a] : entries) col_max[j] = std::max(col_max[j], std::abs(a));
     rows.entries.push_back(std::move(entries));
     rows.lo.push_back(lo);
     rows.hi.push_back(hi);
-    try {
-      load_row(m() - 1);
-    } catch (...) {
-      rows.entries.pop_back();
-      rows.lo.pop_back();
-      rows.hi.pop_back();
-      throw;
-    }
   }
 
   // The power of 2 that brings the objective to the size of the matrix columns it weighs:
@@ -240,8 +253,8 @@ int LinearProgram::num_rows() const { return impl_->m(); }
 
 int LinearProgram::add_variables(int count, double lo, double hi) {
   if (count <= 0) throw InputError("LinearProgram::add_variables: count must be positive");
-  check_bounds(lo, hi, "LinearProgram::add_variables");
-  glp_prob* p = impl_->prob();
+  check_bounds(lo, hi, std::string("LinearProgram::add_variables"));
+  glp_prob* p = impl_->columns();
   const int first = impl_->n();
   call_glpk("LinearProgram::add_variables", [p, count] { glp_add_cols(p, count); });
   impl_->col_lo.conservativeResize(first + count);
@@ -262,7 +275,7 @@ int LinearProgram::add_variables(int count, double lo, double hi) {
 void LinearProgram::set_variable_bounds(int j, double lo, double hi) {
   if (j < 0 || j >= impl_->n()) throw InputError("LinearProgram: variable index out of range");
   check_bounds(lo, hi, "LinearProgram variable " + std::to_string(j));
-  glp_prob* p = impl_->prob();
+  glp_prob* p = impl_->columns();
   impl_->col_lo[j] = lo;
   impl_->col_hi[j] = hi;
   call_glpk("LinearProgram::set_variable_bounds", [=] { set_glpk_col_bounds(p, j, lo, hi); });
@@ -272,7 +285,7 @@ double LinearProgram::variable_upper(int j) const { return impl_->col_hi[j]; }
 
 void LinearProgram::set_integer(int j, bool integer) {
   if (j < 0 || j >= impl_->n()) throw InputError("LinearProgram: variable index out of range");
-  glp_prob* p = impl_->prob();
+  glp_prob* p = impl_->columns();
   impl_->integer[static_cast<std::size_t>(j)] = integer;
   call_glpk("LinearProgram::set_integer", [=] { glp_set_col_kind(p, j + 1, integer ? GLP_IV : GLP_CV); });
   if (integer) impl_->has_integer = true;
@@ -336,7 +349,7 @@ void LinearProgram::set_objective(const Eigen::Ref<const Eigen::VectorXd>& c, Se
   if (c.size() != impl_->n()) throw InputError("LinearProgram::set_objective: wrong dimension");
   for (Eigen::Index j = 0; j < c.size(); ++j)
     check_coefficient(c[j], "LinearProgram::set_objective: cost of column " + std::to_string(j));
-  glp_prob* p = impl_->prob();
+  glp_prob* p = impl_->columns();
   impl_->c = c;
   impl_->sense = sense;
   const double* pc = impl_->c.data();
@@ -377,7 +390,7 @@ LpBasis LinearProgram::basis() const {
                                                                                                          : GLP_NF);
     return b;
   }
-  glp_prob* p = impl_->lp;
+  glp_prob* p = impl_->prob();
   unsigned char* rs = b.rows.data();
   unsigned char* cs = b.cols.data();
   const int m = impl_->m(), n = impl_->n();

@@ -5,8 +5,9 @@
 // Why: the PUIs of a feasible parameter set solve 2p LPs with p ~ 6-30 columns and ~100 rows
 // each; GLPK's per-call overhead (problem set-up, scaling checks, sparse LU of an (m+n)-basis)
 // dominates there. This solver works on the vertex (active-set) form: a basis is n active
-// constraints (rows or column bounds) whose n x n matrix is refactorised at every iteration,
-// so nothing accumulates error. The dual simplex (most violated constraint in, Harris ratio
+// constraints (rows or column bounds) whose n x n matrix is inverted afresh at every iteration
+// (n small: cheaper than LU solves plus a condition estimate, and the 1-norm condition number
+// comes exactly), so nothing accumulates error. The dual simplex (most violated constraint in, Harris ratio
 // test) runs from a dual-feasible basis; the primal simplex runs from a feasible vertex. Both
 // restart from the last basis, so the 2p objectives over the same rows warm-start each other,
 // and rows added since the last solve (row generation) are priced in by the dual simplex.
@@ -64,7 +65,7 @@ class DenseLp {
   LpSolution make_solution(LpStatus status) const;
 
   int n_, m_ = 0;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> A_;  // capacity x n
+  Eigen::MatrixXd A_;  // capacity x n, by column: A x is n vectorised axpys over the rows
   Eigen::VectorXd lo_, hi_, norm_;                                            // per row (capacity)
   Eigen::VectorXd col_lo_, col_hi_, c_;
   Sense sense_ = Sense::minimize;
@@ -82,9 +83,10 @@ class DenseLp {
   Eigen::VectorXd g_;        // cost in minimisation form
   Eigen::MatrixXd B_;        // rows: normals of the basic constraints
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  Eigen::MatrixXd Binv_;     // B^-1 (n x n): x, the multipliers and both ratio tests from it
   Eigen::VectorXd x_, mu_, rhs_;
   Eigen::VectorXd ax_;       // A x for every row
-  Eigen::VectorXd aq_, u_, e_, d_, ad_;  // ratio-test work (kept: no allocation per iteration)
+  Eigen::VectorXd aq_, u_, d_, ad_;  // ratio-test work (kept: no allocation per iteration)
   struct Blocking {          // a constraint the primal step may meet (see primal_step)
     int k;
     double step, size;
