@@ -153,8 +153,16 @@ CanonicalFps regression_fps(const CanonicalRegression& r, const Eigen::Ref<const
     if (!(bounds[e] >= 0) || !std::isfinite(bounds[e]))
       throw InputError("regression_fps: the bound of equation " + std::to_string(e) + " must be finite and >= 0");
   IntervalVector Y(r.y.size());
-  for (Eigen::Index k = 0; k < r.y.size(); ++k) Y[k] = interval_around(r.y[k], bounds[r.equation[k]]);
-  return CanonicalFps(to_interval(r.Psi), Y);
+  {
+    // interval_around(y, bound) for every row, with one rounding-mode switch for all of them.
+    RoundingScope upward;
+    using I = UnprotectedInterval;
+    for (Eigen::Index k = 0; k < r.y.size(); ++k) {
+      const double b = bounds[r.equation[k]];
+      Y[k] = I(r.y[k]) + I(-b, b);
+    }
+  }
+  return CanonicalFps(r.Psi, Y);
 }
 
 PairView pair_view(const Ellipsoid& E, int i, int j) {

@@ -99,12 +99,20 @@ QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::MatrixXd& W
   std::vector<Eigen::Index> used;
   for (Eigen::Index j = 0; j < W.cols(); ++j)
     if (!W.col(j).isZero(0)) used.push_back(j);
-  Eigen::MatrixXd Wu(W.rows(), static_cast<Eigen::Index>(used.size())), Xu(g.X.rows(), Wu.cols());
-  for (std::size_t q = 0; q < used.size(); ++q) {
-    Wu.col(static_cast<Eigen::Index>(q)) = W.col(used[q]);
-    Xu.col(static_cast<Eigen::Index>(q)) = g.X.col(used[q]);
+  const auto m = static_cast<Eigen::Index>(used.size()), c = g.X.rows();
+  Eigen::MatrixXd Wu(W.rows(), m), S(W.rows(), c);  // row t of S: fl(X a_t)
+  for (Eigen::Index q = 0; q < m; ++q) Wu.col(q) = W.col(used[static_cast<std::size_t>(q)]);
+  if (m > 0 && used.back() == m - 1) {
+    // The columns used are 0..m-1 (the windows of the propagator functionals): X is lower
+    // triangular, so its top m x m corner is too and half of the product is zeros. Leaving
+    // them out changes no bound (gamma_c covers any order of summation, zeros add exactly).
+    S.leftCols(m).noalias() = Wu * g.X.topLeftCorner(m, m).transpose().triangularView<Eigen::Upper>();
+    S.rightCols(c - m).noalias() = Wu * g.X.bottomLeftCorner(c - m, m).transpose();
+  } else {
+    Eigen::MatrixXd Xu(c, m);
+    for (Eigen::Index q = 0; q < m; ++q) Xu.col(q) = g.X.col(used[static_cast<std::size_t>(q)]);
+    S.noalias() = Wu * Xu.transpose();
   }
-  const Eigen::MatrixXd S = Wu * Xu.transpose();  // row t: fl(X a_t)
   const Eigen::VectorXd s2 = S.rowwise().squaredNorm(), w2 = Wu.rowwise().squaredNorm();
   QuadraticBounds b{Eigen::VectorXd(W.rows()), Eigen::VectorXd(W.rows())};
   RoundingScope upward;
