@@ -271,7 +271,7 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   return r;
 }
 
-Eigen::VectorXd rms_tracking_error(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& truth) {
+Eigen::VectorXd rms_tracking_error(const Eigen::Ref<const Eigen::MatrixXd>& estimate, const Eigen::Ref<const Eigen::MatrixXd>& truth) {
   if (estimate.rows() != truth.rows() || estimate.cols() != truth.cols() || estimate.rows() == 0)
     throw InputError("rms_tracking_error: estimate and truth differ in size or are empty");
   return ((estimate - truth).array().square().colwise().sum() / static_cast<double>(truth.rows())).sqrt().transpose();

@@ -6,8 +6,9 @@
 
 namespace sets {
 
-TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                                             const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
+TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                             const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                             const Eigen::Ref<const Eigen::MatrixXd>& y,
                                              const std::vector<WindowNorm>& windows, int iterations,
                                              LinfBoundOptions options) {
   if (iterations < 0)

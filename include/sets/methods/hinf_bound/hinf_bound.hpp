@@ -182,7 +182,7 @@ struct BoundResult {
 };
 
 /// Step 4. weight: W^-1 as an FIR (WeightFit::h); pass h = [1] for W = 1.
-BoundResult error_bound(const UncertaintySet& set, const TransferFunction& nominal, const Eigen::VectorXd& h);
+BoundResult error_bound(const UncertaintySet& set, const TransferFunction& nominal, const Eigen::Ref<const Eigen::VectorXd>& h);
 
 struct HinfBoundOptions {
   UncertaintyOptions uncertainty;
@@ -223,6 +223,6 @@ HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure,
 
 /// max over the dense grid of |W(e^iw) (G(e^iw) - Ghat(e^iw))|, W = 1/h.
 double weighted_error(const std::function<std::complex<double>(double)>& G, const TransferFunction& nominal,
-                      const Eigen::VectorXd& h, int dense_points = 4096);
+                      const Eigen::Ref<const Eigen::VectorXd>& h, int dense_points = 4096);
 
 }  // namespace sets

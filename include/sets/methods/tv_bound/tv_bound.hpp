@@ -134,6 +134,6 @@ struct SparseBoundOptions {
 TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& options);
 
 /// sqrt(mean_k (est_i(k) - truth_i(k))^2) per column.
-Eigen::VectorXd rms_tracking_error(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& truth);
+Eigen::VectorXd rms_tracking_error(const Eigen::Ref<const Eigen::MatrixXd>& estimate, const Eigen::Ref<const Eigen::MatrixXd>& truth);
 
 }  // namespace sets
