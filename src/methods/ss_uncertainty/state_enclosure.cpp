@@ -107,7 +107,7 @@ QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::MatrixXd& W
     // triangular, so its top m x m corner is too and half of the product is zeros. Leaving
     // them out changes no bound (gamma_c covers any order of summation, zeros add exactly).
     S.leftCols(m).noalias() = Wu * g.X.topLeftCorner(m, m).transpose().triangularView<Eigen::Upper>();
-    S.rightCols(c - m).noalias() = Wu * g.X.bottomLeftCorner(c - m, m).transpose();
+    if (c > m) S.rightCols(c - m).noalias() = Wu * g.X.bottomLeftCorner(c - m, m).transpose();
   } else {
     Eigen::MatrixXd Xu(c, m);
     for (Eigen::Index q = 0; q < m; ++q) Xu.col(q) = g.X.col(used[static_cast<std::size_t>(q)]);
