@@ -34,7 +34,7 @@ double polynomial_second_derivative_bound(const Eigen::VectorXd& c) {
 // Rigorous lower bound on min_w |c(e^{-iw})| over [0, pi] (real coefficients: |c| is even in w):
 // g = |c|^2 has |g''| <= 2((sum k|c_k|)^2 + sum|c_k| sum k^2|c_k|), and between two grid points
 // g >= min(ends) - spacing^2/8 sup|g''|.
-double poly_min_modulus(const Eigen::VectorXd& c) {
+double poly_min_modulus(const Eigen::Ref<const Eigen::VectorXd>& c) {
   const double l1 = polynomial_derivative_bound(c), g2 = 2 * (l1 * l1 + c.cwiseAbs().sum() * polynomial_second_derivative_bound(c));
   for (int points = 8192; points <= (1 << 19); points *= 8) {  // refine until certified
     double m = inf;
@@ -281,11 +281,8 @@ void bounded_regions(UncertaintySet& S, const Eigen::Ref<const Eigen::VectorXd>&
       for (int j = 0; j < nw; ++j) dirs.push_back(sign * M->col(j));
   const FpsSupport sup = support(fps, dirs);
   S.lp_solves += sup.lp_solves;
-  if (sup.empty()) {  // certified only: an undecided verdict goes on (and fails below if unbounded)
-    S.empty = true;
-    S.falsification = sup.consistency.message();
-    return;
-  }
+  S.consistency = sup.consistency;
+  if (sup.empty()) return;  // certified only: an undecided verdict goes on (and fails below if unbounded)
   set_coefficient_box(S, sup, g.n);
   auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
     const double v = sup.maxima[static_cast<std::size_t>(k)];
@@ -473,7 +470,7 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
 
 // ------------------------------------------------------------------ step 2
 NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
-  if (S.empty) throw InputError("nominal model: the uncertainty set is empty (data falsify the priors)");
+  if (S.empty()) throw InputError("nominal model: the uncertainty set is empty (data falsify the priors)");
   const int nw = static_cast<int>(S.frequencies.size());
   const int ng = o.order;
   if (ng < 0) throw InputError("nominal order " + num(ng) + " must be >= 0");
@@ -744,7 +741,7 @@ LocalTf local_tf(const Eigen::VectorXd& b, const Eigen::VectorXd& a, const Eigen
 struct BandContext {
   const UncertaintySet& S;
   const TransferFunction& nominal;
-  const Eigen::VectorXd& h;
+  Eigen::VectorXd h;  // a copy: callers pass an Eigen::Ref, which may own a temporary that dies before the context
   double Wder = 0, Gder = 0, hder = 0;
   int n = 0, K = 0, m = 1;
   double D0 = 0, H0 = 0, L0 = 0;
@@ -829,7 +826,7 @@ Piece evaluate_piece(const BandContext& c, const Cell& cell, double wi, double e
   return {Wi * (value + eta * (lipd + lipg)), value / hi_abs, cell.j, wi, eta};
 }
 
-BandContext band_context(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h,
+BandContext band_context(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::Ref<const Eigen::VectorXd>& h,
                          double Wder, double Gder) {
   BandContext c{S, nominal, h};
   const OrthonormalBasis& basis = S.basis;
@@ -862,7 +859,7 @@ BandContext band_context(const UncertaintySet& S, const TransferFunction& nomina
 // bound until that bound is within `tolerance` (relative) of the largest value at a centre (no
 // refinement can go below it), or `budget` more pieces have been evaluated. The answer is the
 // largest bound over a partition of [0, pi], whichever piece stops the refinement.
-double data_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h, double Wder,
+double data_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::Ref<const Eigen::VectorXd>& h, double Wder,
                   double Gder, double& kappa) {
   const int n = static_cast<int>(S.theta_ref.size());
   if (n == 0 || S.theta_radius.size() != n) {
@@ -908,7 +905,7 @@ double data_bound(const UncertaintySet& S, const TransferFunction& nominal, cons
 }
 }  // namespace
 
-BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::VectorXd& h) {
+BoundResult error_bound(const UncertaintySet& S, const TransferFunction& nominal, const Eigen::Ref<const Eigen::VectorXd>& h) {
   const auto& w = S.frequencies;
   const int nw = static_cast<int>(w.size());
   BoundResult B;
@@ -943,7 +940,7 @@ HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure,
   HinfBoundResult r;
   r.set = uncertainty_set(data.u, data.y, structure.basis, structure.order, structure.grid, structure.priors,
                           o.uncertainty, data.r);
-  if (r.set.empty) return r;
+  if (r.set.empty()) return r;
   r.nominal = fit_nominal(r.set, o.nominal);
   r.delta = additive_error(r.set, r.nominal.model);
   // Default W1 = 1/delta: minimise the largest relative over-bound |W^-1|^2/delta^2 - 1, so the
@@ -963,7 +960,7 @@ Eigen::VectorXd midpoint_grid(int points, double w_min, double w_max) {
 }
 
 double weighted_error(const std::function<std::complex<double>(double)>& G, const TransferFunction& nominal,
-                      const Eigen::VectorXd& h, int dense_points) {
+                      const Eigen::Ref<const Eigen::VectorXd>& h, int dense_points) {
   double e = 0;
   for (int i = 0; i < dense_points; ++i) {
     const double w = pi * i / (dense_points - 1);

@@ -98,9 +98,9 @@ HPolytope WindowNormBall::lifted_polytope(const Eigen::Ref<const Eigen::VectorXd
   return HPolytope(A, b);
 }
 
-WindowNormBall::LpBlock WindowNormBall::add_to(LinearProgram& lp, const Eigen::VectorXd& offset,
-                                               const Eigen::MatrixXd& map, int first_col,
-                                               const Eigen::VectorXd& eps_fixed) const {
+WindowNormBall::LpBlock WindowNormBall::add_to(LinearProgram& lp, const Eigen::Ref<const Eigen::VectorXd>& offset,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& map, int first_col,
+                                               const Eigen::Ref<const Eigen::VectorXd>& eps_fixed) const {
   check_size(offset.size(), "the offset");
   check_size(map.rows(), "the map");
   if (first_col < 0 || first_col + map.cols() > lp.num_variables())

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "sets/fps/falsification.hpp"
 #include "sets/models/orthonormal_basis.hpp"
 #include "sets/models/transfer_function.hpp"
 
@@ -110,8 +111,10 @@ struct UncertaintySet {
   double level = 0;            // probability level used at each frequency (stochastic)
   double noise_variance = 0;   // R_v(0) estimate (stochastic)
   int first_sample = 0, tail_terms = 0, rows = 0;
-  bool empty = false;          // bounded noise: the data falsify the priors
-  std::string falsification;
+  /// Bounded noise: do the data falsify the priors? (the verdict of the FPS's support LPs; `yes`
+  /// only with an exact certificate). Stochastic noise: `unknown`, not asked.
+  ConsistencyVerdict consistency;
+  bool empty() const { return consistency.certified_falsified(); }
   int lp_solves = 0;
 };
 
@@ -182,7 +185,7 @@ struct BoundResult {
 };
 
 /// Step 4. weight: W^-1 as an FIR (WeightFit::h); pass h = [1] for W = 1.
-BoundResult error_bound(const UncertaintySet& set, const TransferFunction& nominal, const Eigen::VectorXd& h);
+BoundResult error_bound(const UncertaintySet& set, const TransferFunction& nominal, const Eigen::Ref<const Eigen::VectorXd>& h);
 
 struct HinfBoundOptions {
   UncertaintyOptions uncertainty;
@@ -223,6 +226,6 @@ HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure,
 
 /// max over the dense grid of |W(e^iw) (G(e^iw) - Ghat(e^iw))|, W = 1/h.
 double weighted_error(const std::function<std::complex<double>(double)>& G, const TransferFunction& nominal,
-                      const Eigen::VectorXd& h, int dense_points = 4096);
+                      const Eigen::Ref<const Eigen::VectorXd>& h, int dense_points = 4096);
 
 }  // namespace sets

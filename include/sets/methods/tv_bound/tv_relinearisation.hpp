@@ -42,8 +42,9 @@ struct TvRelinearisedResult {
 /// x(0) = x0 and input u (N x p). iterations = 0 is linf_bound on (2). options.h empty = the
 /// paper's h from the nominal model, kept for every step. Throws InputError on bad input
 /// (including iterations < 0) and NumericalError if an LP fails.
-TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, const Eigen::VectorXd& x0,
-                                             const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
+TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                                             const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                             const Eigen::Ref<const Eigen::MatrixXd>& y,
                                              const std::vector<WindowNorm>& windows, int iterations,
                                              LinfBoundOptions options = {});
 

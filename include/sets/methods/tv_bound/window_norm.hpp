@@ -69,8 +69,9 @@ class WindowNormBall {
   /// Adds the constraint "offset - map * x[first_col ..] lies in the ball" to lp, with T as new
   /// variables. eps is either fixed (eps_fixed, size l) or, when eps_fixed is empty, l new
   /// non-negative variables. Throws InputError on mismatched sizes.
-  LpBlock add_to(LinearProgram& lp, const Eigen::VectorXd& offset, const Eigen::MatrixXd& map, int first_col,
-                 const Eigen::VectorXd& eps_fixed = Eigen::VectorXd()) const;
+  LpBlock add_to(LinearProgram& lp, const Eigen::Ref<const Eigen::VectorXd>& offset,
+                 const Eigen::Ref<const Eigen::MatrixXd>& map, int first_col,
+                 const Eigen::Ref<const Eigen::VectorXd>& eps_fixed = Eigen::VectorXd()) const;
 
  private:
   void check_size(Eigen::Index n, const char* what) const;
