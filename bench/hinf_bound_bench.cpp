@@ -64,7 +64,7 @@ void BM_UncertaintySet(benchmark::State& state) {
   int lps = 0;
   for (auto _ : state) {
     const sets::UncertaintySet S = sets::uncertainty_set(d.u, d.y, basis(), 40, w, priors(), uncertainty_options(bounded));
-    if (S.empty) state.SkipWithError("the priors are falsified");
+    if (S.empty()) state.SkipWithError("the priors are falsified");
     lps = S.lp_solves;
     benchmark::DoNotOptimize(S.regions.data());
   }

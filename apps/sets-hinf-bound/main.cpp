@@ -111,8 +111,8 @@ int main(int argc, char** argv) {
     }
     const std::clock_t cpu0 = std::clock();
     const Runs runs = run_all(s, data, G0);
-    if (runs.first.set.empty) {
-      std::cout << "\nThe data falsify the priors (bounded noise): " << runs.first.set.falsification << "\n";
+    if (runs.first.set.empty()) {
+      std::cout << "\nThe data falsify the priors (bounded noise): " << runs.first.set.consistency.message() << "\n";
       return int(sets::exit_falsified);
     }
     const double cpu_per_run = double(std::clock() - cpu0) / CLOCKS_PER_SEC / s.runs;  // includes simulation

@@ -65,7 +65,7 @@ Runs run_all(const Settings& s, const sets::HinfData& data, const sets::Transfer
     const bool first = !have_first;
     have_first = true;
     if (first) out.first = R;
-    if (R.set.empty) {
+    if (R.set.empty()) {
       ++out.falsified;
       continue;
     }

@@ -237,8 +237,11 @@ void bind_hinf(py::module_& m) {
       .def_readonly("beta1", &UncertaintySet::beta1)
       .def_readonly("level", &UncertaintySet::level)
       .def_readonly("noise_variance", &UncertaintySet::noise_variance)
-      .def_readonly("empty", &UncertaintySet::empty, "bounded noise: the data falsify the priors")
-      .def_readonly("falsification", &UncertaintySet::falsification)
+      .def_property_readonly("empty", &UncertaintySet::empty, "bounded noise: the data provably falsify the priors")
+      .def_readonly("consistency", &UncertaintySet::consistency, "bounded noise: the three-valued verdict")
+      .def_property_readonly(
+          "falsification", [](const UncertaintySet& s) { return s.consistency.message(); },
+          "the verdict as one line for the user")
       .def_readonly("lp_solves", &UncertaintySet::lp_solves);
   py::class_<NominalFit>(m, "NominalFit")
       .def_readonly("model", &NominalFit::model)
@@ -347,7 +350,9 @@ void bind_tv(py::module_& m) {
       .def_readonly("objective", &TvBoundResult::objective)
       .def_readonly("status", &TvBoundResult::status)
       .def_readonly("gap", &TvBoundResult::gap)
-      .def_readonly("nodes", &TvBoundResult::nodes);
+      .def_readonly("nodes", &TvBoundResult::nodes)
+      .def_readonly("consistency", &TvBoundResult::consistency,
+                    "linf_bound with a given epsilon: do the data falsify the model? (yes only when certified)");
   py::class_<LinfBoundOptions> lo(m, "LinfBoundOptions");
   with_keywords(lo);
   lo.def_readwrite("F", &LinfBoundOptions::F)

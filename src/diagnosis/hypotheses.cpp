@@ -308,7 +308,7 @@ std::vector<Candidate> missing_special_cases(const Context& c, const ModelFile& 
 }
 
 // The shortlist: the best `k` by score (one delay per actuator), those consistent with the noise
-// bound, the best two by equation error, and the special cases of every one of those (so that a
+// bound, the best two by equation error, those calibrated from the file's values, and the special cases of every one of those (so that a
 // richer law is always judged against the law it contains, hypotheses.cpp's nested rule).
 std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   std::vector<const ScreenedHypothesis*> out;
@@ -333,6 +333,12 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
     if (std::isfinite(h.ee_gain) && h.ee_gain > 0.1) by_ee.push_back(&h);
   std::sort(by_ee.begin(), by_ee.end(), [](auto* a, auto* b) { return a->ee_gain > b->ee_gain; });
   for (std::size_t i = 0; i < std::min<std::size_t>(2, by_ee.size()); ++i) take(*by_ee[i]);
+  // A candidate that must be calibrated from the file's values (a sensor law that is not
+  // invertible, e.g. a mirror |y|: the nominal calibrated on its data sits in another basin) is
+  // screened by a linearisation at the wrong point, so its screening cost says nothing: it is
+  // always refined.
+  for (const auto& h : s.ranked)
+    if (h.candidate.restart && h.candidate.parts.empty()) take(h);
   const std::size_t listed = out.size();
   for (std::size_t i = 0; i < listed; ++i)
     for (const auto& h : s.ranked)

@@ -47,7 +47,9 @@ SuitePlantResult run_suite_plant(const SyntheticPlant& p, const DiagnosisOptions
         if (e.name != t.name || e.equation != t.where) continue;
         for (const auto& [role, value] : t.values)
           for (const auto& ep : e.parameters)
-            if (ep.role == role) r.coverage.push_back({t.name, role, value, ep.lo, ep.hi, ep.estimate, ep.lo <= value && value <= ep.hi});
+            if (ep.role == role)
+              r.coverage.push_back({t.name, role, value, ep.lo, ep.hi, ep.estimate, ep.oe_lo, ep.oe_hi, ep.has_ee, ep.ee_lo, ep.ee_hi,
+                                    ep.stat_lo, ep.stat_hi, ep.lo <= value && value <= ep.hi});
       }
   } catch (const std::exception& e) {
     r.error = e.what();
@@ -89,6 +91,30 @@ std::string pct(int a, int b) {
   std::ostringstream o;
   o << a << " of " << b;
   if (b > 0) o << " (" << std::fixed << std::setprecision(1) << 100.0 * a / b << " %)";
+  return o.str();
+}
+
+std::string interval(double lo, double hi) {
+  std::ostringstream o;
+  o << std::setprecision(4) << "[" << lo << ", " << hi << "]";
+  return o.str();
+}
+
+// Every true value outside its reported interval, with the sets it is the meet of: says whether an
+// interval misses because one bound is violated (its own set misses) or because the meet is narrow.
+std::string coverage_misses(const std::vector<SuitePlantResult>& results) {
+  std::ostringstream o;
+  int n = 0;
+  for (const auto& r : results)
+    for (const auto& c : r.coverage) {
+      if (c.inside) continue;
+      if (n++ == 0)
+        o << "\nTrue values outside the reported interval:\n\n| plant | effect | role | true | reported | estimate | output-error PUI | "
+             "equation-error PUI | 95 % statistical |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      o << "| " << r.name << " | " << c.effect << " | " << c.role << " | " << std::setprecision(4) << c.truth << " | " << interval(c.lo, c.hi)
+        << " | " << std::setprecision(4) << c.estimate << " | " << interval(c.oe_lo, c.oe_hi) << " | "
+        << (c.has_ee ? interval(c.ee_lo, c.ee_hi) : std::string("–")) << " | " << interval(c.stat_lo, c.stat_hi) << " |\n";
+    }
   return o.str();
 }
 
@@ -214,6 +240,7 @@ std::string suite_report(const std::vector<SuitePlantResult>& results, bool tabl
     const int t = tp.count(e) ? tp[e] : 0, f = fp.count(e) ? fp[e] : 0, m = fn.count(e) ? fn[e] : 0;
     o << "| " << e << " | " << t + m << " | " << t << " | " << (t + f ? pct(t, t + f) : "–") << " | " << (t + m ? pct(t, t + m) : "–") << " |\n";
   }
+  o << coverage_misses(results);
   return o.str();
 }
 

@@ -96,3 +96,6 @@ def test_hinf_bound_equals_the_app(tmp_path, app):
     assert res.bound.b_grid == expected["b_grid"]
     np.testing.assert_array_equal(res.set.frequencies, expected["frequencies"])
     np.testing.assert_array_equal(res.delta, expected["delta"])
+    # stochastic noise (the default): consistency is not asked, so neither empty nor falsified
+    assert res.set.consistency.falsified == sets.Falsified.unknown
+    assert not res.set.empty and "could not be decided" in res.set.falsification

@@ -17,6 +17,10 @@ namespace sets {
 struct SuiteCoverage {
   std::string effect, role;
   double truth = 0, lo = 0, hi = 0, estimate = 0;
+  double oe_lo = 0, oe_hi = 0;            // the output-error PUI ...
+  bool has_ee = false;
+  double ee_lo = 0, ee_hi = 0;            // ... and the equation-error one, whose meet is [lo, hi]
+  double stat_lo = 0, stat_hi = 0;        // 95 % statistical interval (white-noise assumption)
   bool inside = false;
 };
 

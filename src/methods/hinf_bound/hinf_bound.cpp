@@ -281,11 +281,8 @@ void bounded_regions(UncertaintySet& S, const Eigen::Ref<const Eigen::VectorXd>&
       for (int j = 0; j < nw; ++j) dirs.push_back(sign * M->col(j));
   const FpsSupport sup = support(fps, dirs);
   S.lp_solves += sup.lp_solves;
-  if (sup.empty()) {  // certified only: an undecided verdict goes on (and fails below if unbounded)
-    S.empty = true;
-    S.falsification = sup.consistency.message();
-    return;
-  }
+  S.consistency = sup.consistency;
+  if (sup.empty()) return;  // certified only: an undecided verdict goes on (and fails below if unbounded)
   set_coefficient_box(S, sup, g.n);
   auto extreme = [&](int k) {  // the maximum in direction k, or minus it for the mirrored one
     const double v = sup.maxima[static_cast<std::size_t>(k)];
@@ -473,7 +470,7 @@ UncertaintySet uncertainty_set(const Eigen::Ref<const Eigen::VectorXd>& u, const
 
 // ------------------------------------------------------------------ step 2
 NominalFit fit_nominal(const UncertaintySet& S, const NominalOptions& o) {
-  if (S.empty) throw InputError("nominal model: the uncertainty set is empty (data falsify the priors)");
+  if (S.empty()) throw InputError("nominal model: the uncertainty set is empty (data falsify the priors)");
   const int nw = static_cast<int>(S.frequencies.size());
   const int ng = o.order;
   if (ng < 0) throw InputError("nominal order " + num(ng) + " must be >= 0");
@@ -943,7 +940,7 @@ HinfBoundResult hinf_bound(const HinfData& data, const HinfStructure& structure,
   HinfBoundResult r;
   r.set = uncertainty_set(data.u, data.y, structure.basis, structure.order, structure.grid, structure.priors,
                           o.uncertainty, data.r);
-  if (r.set.empty) return r;
+  if (r.set.empty()) return r;
   r.nominal = fit_nominal(r.set, o.nominal);
   r.delta = additive_error(r.set, r.nominal.model);
   // Default W1 = 1/delta: minimise the largest relative over-bound |W^-1|^2/delta^2 - 1, so the

@@ -144,13 +144,20 @@ TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& option
   if (fixed_eps && s.status == LpStatus::infeasible && !prove_infeasible(lp))
     throw NumericalError("linf_bound: the LP solver found no perturbation trajectory within epsilon, but no "
                          "certificate of it could be verified: whether the data falsify the model is undecided");
-  if (fixed_eps && s.status == LpStatus::infeasible)
-    throw EmptySetError("linf_bound: no perturbation trajectory explains the data with the noise's window norm "
-                        "within the given epsilon (the data falsify the model and epsilon)");
+  TvBoundResult r;
+  if (fixed_eps && s.status == LpStatus::infeasible) {
+    r.consistency.falsified = Falsified::yes;
+    r.epsilon = options.epsilon;
+    return r;
+  }
   if (s.status != LpStatus::optimal)
     throw NumericalError(std::string("linf_bound: the LP is ") + to_string(s.status) + " (it is feasible by construction)");
 
-  TvBoundResult r;
+  if (!fixed_eps) {
+    r.consistency.falsified = Falsified::no;
+  } else {
+    r.consistency.reason = "the LP found a perturbation trajectory within epsilon in floating point (not verified)";
+  }
   r.objective = s.objective;
   r.epsilon = fixed_eps ? options.epsilon : Eigen::VectorXd(s.x.segment(blk.first_eps, l));
   Eigen::VectorXd mu = options.mu;

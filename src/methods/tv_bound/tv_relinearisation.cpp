@@ -22,6 +22,7 @@ TvRelinearisedResult relinearised_linf_bound(const TimeVaryingModel& model, cons
   for (int m = 0; m <= iterations; ++m) {
     if (m > 0) r.data.regression = linearised_regression(model, x0, u, r.linf.pi);
     r.linf = linf_bound(r.data, options);
+    if (r.linf.falsified()) break;  // no trajectory to linearise around
     TvRelinearisationStep s;
     s.objective = r.linf.objective;
     s.epsilon = r.linf.epsilon;

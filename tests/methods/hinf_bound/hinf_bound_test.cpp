@@ -255,7 +255,7 @@ RC_GTEST_PROP(HinfWorstCase, TrueSystemIsInsideTheBoundedNoiseSet, ()) {
   const Eigen::VectorXd grid = uniform_grid(16);
   const HinfBoundResult R = hinf_bound(HinfData{u.tail(N), y.tail(N), {}},
                                        HinfStructure{OrthonormalBasis::fir(), 8, priors, grid}, opt);
-  RC_ASSERT(!R.set.empty);
+  RC_ASSERT(!R.set.empty());
   for (int j = 0; j < grid.size(); ++j) RC_ASSERT(R.set.regions[j].contains(G0(grid[j])));
   const auto G = [&](double w) { return G0(w); };
   RC_ASSERT(weighted_error(G, R.nominal.model, R.weight.h, 2048) <= R.bound.b);
@@ -318,8 +318,32 @@ TEST(HinfWorstCase, FalsifiedPriorsGiveAnEmptySet) {
   o.uncertainty.noise = NoiseModel::bounded;
   o.uncertainty.v_bar = 0.01;
   const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), 6, p, uniform_grid(10)}, o);
-  EXPECT_TRUE(R.set.empty);
-  EXPECT_FALSE(R.set.falsification.empty());
+  EXPECT_TRUE(R.set.empty());
+  EXPECT_EQ(R.set.consistency.falsified, sets::Falsified::yes);
+  EXPECT_FALSE(R.set.consistency.conflict.samples.empty());  // which samples conflict, for the user
+  EXPECT_NE(R.set.consistency.message().find("falsify"), std::string::npos) << R.set.consistency.message();
+}
+
+TEST(HinfWorstCase, ConsistentDataSayNotFalsifiedAndTheStochasticModelDoesNotAsk) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::VectorXd u(300);
+  for (auto& x : u) x = U(rng);
+  const FirstOrderSum G0{{0.5}, {0.5}};
+  Eigen::VectorXd y = G0.simulate(u);
+  for (auto& x : y) x += 0.01 * U(rng);  // inside the claimed bound
+  HinfPriors p;
+  p.M = 1;
+  p.rho = 0.6;
+  HinfBoundOptions o;
+  o.uncertainty.noise = NoiseModel::bounded;
+  o.uncertainty.v_bar = 0.02;
+  const HinfStructure st{OrthonormalBasis::fir(), 6, p, uniform_grid(10)};
+  const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, st, o);
+  EXPECT_FALSE(R.set.empty());
+  EXPECT_NE(R.set.consistency.falsified, sets::Falsified::yes);
+  o.uncertainty.noise = NoiseModel::stochastic;
+  EXPECT_EQ(hinf_bound(HinfData{u, y, {}}, st, o).set.consistency.falsified, sets::Falsified::unknown);
 }
 
 // Stochastic noise: a small Monte Carlo. With alpha = 0.9 simultaneous over the grid, at most
@@ -470,7 +494,7 @@ RC_GTEST_PROP(HinfDataBound, BoundHoldsForEverySystemConsistentWithTheData, ()) 
   o.weight.degree = 4;
   const Eigen::VectorXd grid = uniform_grid(5);
   const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), n, p, grid}, o);
-  RC_ASSERT(!R.set.empty);
+  RC_ASSERT(!R.set.empty());
   const Eigen::VectorXd theta1 = theta0 + d;
   RC_PRE(theta1.cwiseAbs().maxCoeff() <= 1.0);  // theta1 within the prior |g(k)| <= rho^k? (checked below)
   for (int k = 0; k < n; ++k) RC_PRE(std::abs(theta1[k]) <= std::pow(p.rho, k));
@@ -561,7 +585,7 @@ TEST(HinfBetweenGrid, PeakBetweenGridPointsIsInsideEveryBoundThatClaimsAllFreque
   opt.nominal.iterations = 4;
   const HinfBoundResult R = hinf_bound(HinfData{u.tail(N), y.tail(N), {}},
                                        HinfStructure{OrthonormalBasis::fir(), n, priors, uniform_grid(3)}, opt);
-  ASSERT_FALSE(R.set.empty);
+  ASSERT_FALSE(R.set.empty());
   const double peak = weighted_error(G0, R.nominal.model, R.weight.h, 8192);
   ASSERT_GT(peak, 2 * R.bound.b_grid) << "the fixture must peak between the grid points for this test to mean anything";
   EXPECT_LE(peak, R.bound.b);

@@ -331,9 +331,16 @@ TEST(TvBound, BadInputIsRejectedWithClearErrors) {
   // and w(0) * 1 = 1/3 > 0.1.
   lo.h.resize(0);
   lo.epsilon = Eigen::VectorXd::Constant(1, 0.1);
-  expect_error_naming<sets::EmptySetError>([&] { sets::linf_bound(data, lo); }, "within the given epsilon");
+  const auto falsified = sets::linf_bound(data, lo);
+  EXPECT_TRUE(falsified.falsified());
+  EXPECT_EQ(falsified.pi.size(), 0);
+  EXPECT_NE(falsified.consistency.message().find("falsify"), std::string::npos);
   lo.epsilon = Eigen::VectorXd::Constant(1, 0.34);
-  EXPECT_NO_THROW(sets::linf_bound(data, lo));
+  const auto within = sets::linf_bound(data, lo);
+  EXPECT_EQ(within.consistency.falsified, sets::Falsified::unknown);  // a floating-point trajectory, not verified
+  EXPECT_GT(within.pi.size(), 0);
+  lo.epsilon.resize(0);
+  EXPECT_EQ(sets::linf_bound(data, lo).consistency.falsified, sets::Falsified::no);  // eps free: always explained
   // Options of the sparse method.
   sets::SparseBoundOptions so;  // mu, max_abs and epsilon missing
   expect_error_naming([&] { sets::sparse_bound(data, so); }, "mu needs one positive threshold");

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "sets/fps/falsification.hpp"
 #include "sets/models/orthonormal_basis.hpp"
 #include "sets/models/transfer_function.hpp"
 
@@ -110,8 +111,10 @@ struct UncertaintySet {
   double level = 0;            // probability level used at each frequency (stochastic)
   double noise_variance = 0;   // R_v(0) estimate (stochastic)
   int first_sample = 0, tail_terms = 0, rows = 0;
-  bool empty = false;          // bounded noise: the data falsify the priors
-  std::string falsification;
+  /// Bounded noise: do the data falsify the priors? (the verdict of the FPS's support LPs; `yes`
+  /// only with an exact certificate). Stochastic noise: `unknown`, not asked.
+  ConsistencyVerdict consistency;
+  bool empty() const { return consistency.certified_falsified(); }
   int lp_solves = 0;
 };
 

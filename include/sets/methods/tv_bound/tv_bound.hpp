@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "sets/fps/falsification.hpp"
 #include "sets/numeric/linear_program.hpp"
 #include "sets/models/time_varying_model.hpp"
 #include "sets/methods/tv_bound/window_norm.hpp"
@@ -52,6 +53,12 @@ struct TvBoundResult {
   double best_bound = 0;  // jump_search: certified lower bound on the optimum; glpk_big_m: GLPK's
   double gap = 0;         // (objective - best_bound) / max(1, |objective|)
   long nodes = 0;         // branch-and-bound nodes (jump_search: LPs solved)
+  /// linf_bound: do the data falsify the model with the given epsilon? `no` when eps is a variable
+  /// of (8) (some eps always explains the data); with a fixed eps, `yes` only with an exactly
+  /// verified Farkas certificate (then pi, bound, residual are empty), `unknown` when the LP found
+  /// a trajectory in floating point (not verified). MILP: `unknown`.
+  ConsistencyVerdict consistency;
+  bool falsified() const { return consistency.certified_falsified(); }
 };
 
 struct LinfBoundOptions {
@@ -76,8 +83,9 @@ Eigen::VectorXd paper_epsilon_weight(const TvBoundData& data);
 
 /// Equation (8): min ||(I (x) F) Pi||_inf + ||(I (x) G) Delta Pi||_inf + h^T eps
 /// s.t. W |Y_m - Upsilon - Xi Pi| <= 1 (x) eps, as one LP (eps fixed and no h-term when
-/// options.epsilon is given). Throws InputError on bad input, EmptySetError if no perturbation
-/// explains the data with the given epsilon, and NumericalError if GLPK fails.
+/// options.epsilon is given). Throws InputError on bad input and NumericalError if GLPK fails or
+/// reports no perturbation within the given epsilon without a verifiable certificate; a certified
+/// "no perturbation explains the data within epsilon" is the result's `consistency` (falsified()).
 TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& options = {});
 
 /// How (14) is solved. Both solve the same problem (same optimum); they differ in whether they
