@@ -5,6 +5,7 @@
 
 #include "sets/examples/farah.hpp"
 #include "sets/methods/ss_uncertainty/level_set_uncertainty.hpp"
+#include "sets/methods/ss_uncertainty/ss_uncertainty.hpp"
 #include "sets/methods/ss_uncertainty/propagator_identification.hpp"
 #include "sets/methods/ss_uncertainty/state_enclosure.hpp"
 
@@ -101,6 +102,20 @@ void BM_GuaranteedPui(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(sets::pui(fps));
 }
 BENCHMARK(BM_GuaranteedPui)->Unit(benchmark::kMillisecond);
+
+// One whole run of the library call as the app's default campaign makes it (identification,
+// ellipsoid, estimate FPS with its PUIs, state enclosures and the guaranteed FPS, no guaranteed
+// PUIs); the app adds the simulation and the membership tests of the truth.
+void BM_SsUncertaintyRun(benchmark::State& state) {
+  sets::SsUncertaintyOptions o;
+  o.identification.order = 3;
+  o.identification.past = 20;
+  o.identification.rows = data().rows;
+  o.guaranteed = data().assumptions;
+  o.guaranteed_pui = false;
+  for (auto _ : state) benchmark::DoNotOptimize(sets::ss_uncertainty(data().u, data().y, o));
+}
+BENCHMARK(BM_SsUncertaintyRun)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -6,6 +6,9 @@
 #include <ctime>
 #include <iomanip>
 #include <iostream>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <random>
 #include <sstream>
 
@@ -120,10 +123,10 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
   if (result.guaranteed_fps) {
     r.contradicted = !result.state_enclosure->contradictions.empty();
     r.g_full = verdict(result.guaranteed_fps->contains(truth));
-    const auto& X = result.state_enclosure->states;
-    r.g_state_radius = Eigen::VectorXd::Zero(X.rows());
-    for (Eigen::Index k = 0; k < X.rows(); ++k)
-      for (Eigen::Index c = 0; c < X.cols(); ++c) r.g_state_radius[k] += sets::radius(X(k, c)) / X.cols();
+    const Eigen::MatrixXd radii = sets::radius(result.state_enclosure->states);  // one mode switch
+    r.g_state_radius = Eigen::VectorXd::Zero(radii.rows());
+    for (Eigen::Index k = 0; k < radii.rows(); ++k)
+      for (Eigen::Index c = 0; c < radii.cols(); ++c) r.g_state_radius[k] += radii(k, c) / radii.cols();
   }
   if (result.guaranteed_pui) {
     const auto& p = *result.guaranteed_pui;
@@ -137,6 +140,13 @@ RunResult one_run(const Settings& st, const sets::StateSpaceModel& sys, const st
 }  // namespace
 
 int monte_carlo(const Settings& st) {
+#ifdef __GLIBC__
+  // Every run allocates and frees the same matrices of 0.1-1 MB. By default glibc hands such
+  // blocks back to the kernel (mmap above 128 kB, heap trimming) and the next run faults them in
+  // again, zeroed: about a tenth of a run (perf, docs/performance.md). Keep them in the process.
+  mallopt(M_MMAP_THRESHOLD, 16 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
   const auto sys = sets::farah::system();
   const auto rows = st.rows.empty() ? sets::select_rows(sys.A, sys.C, parse_selection(st.selection))
                                     : parse_rows(st.rows, 2);

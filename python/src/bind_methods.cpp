@@ -240,8 +240,8 @@ void bind_hinf(py::module_& m) {
       .def_property_readonly("empty", &UncertaintySet::empty, "bounded noise: the data provably falsify the priors")
       .def_readonly("consistency", &UncertaintySet::consistency, "bounded noise: the three-valued verdict")
       .def_property_readonly(
-          "falsification", [](const UncertaintySet& s) { return s.consistency.message(); },
-          "the verdict as one line for the user")
+          "falsification", [](const UncertaintySet& s) { return s.empty() ? s.consistency.message() : std::string(); },
+          "why the data falsify the priors (empty unless empty is true), as before consistency existed")
       .def_readonly("lp_solves", &UncertaintySet::lp_solves);
   py::class_<NominalFit>(m, "NominalFit")
       .def_readonly("model", &NominalFit::model)

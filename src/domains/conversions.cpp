@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "sets/core/error.hpp"
+#include "sets/numeric/interval.hpp"
 
 namespace sets {
 
@@ -213,6 +215,48 @@ Eigen::MatrixXd polygon_vertices(const HPolytope& P) {
   return polygon_vertices(to_vpolytope(P));
 }
 
+namespace {
+
+// The edge p -> q of V as an interval vector, scaled by a power of 2 (exact) to entries of size
+// ~1, so that products of edges and the shape neither underflow nor overflow on tiny or huge
+// ellipsoids. Empty (size 0) for an edge of length 0.
+IntervalVector scaled_edge(const Eigen::MatrixXd& V, Eigen::Index k) {
+  const Eigen::Index k1 = (k + 1) % V.cols();
+  IntervalVector e(2);
+  for (int i = 0; i < 2; ++i) e[i] = Interval(V(i, k1)) - V(i, k);
+  const double m = std::max(norm(e[0]), norm(e[1]));
+  if (!(m > 0) || !std::isfinite(m)) return IntervalVector();
+  int exponent = 0;
+  std::frexp(m, &exponent);
+  for (int i = 0; i < 2; ++i) e[i] = Interval(std::ldexp(e[i].lower(), -exponent), std::ldexp(e[i].upper(), -exponent));
+  return e;
+}
+
+// True when the polygon V (2 x n) is proven, in interval arithmetic on its exact vertices, to be
+// convex, counter-clockwise and to contain E: every turn is strictly to the left, and for every
+// edge p -> q with outward normal n = (q - p) rotated clockwise, E's support function
+// n^T c + sqrt(n^T P n) is at most n^T p. (With strict left turns, the intersection of the edges'
+// half-planes lies in the polygon.)
+bool polygon_contains(const Eigen::MatrixXd& V, const Ellipsoid& E) {
+  if (!V.allFinite()) return false;
+  const auto n = V.cols();
+  const IntervalMatrix P = to_interval(E.shape());
+  const Interval cx(E.center()[0]), cy(E.center()[1]);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const IntervalVector e = scaled_edge(V, k), next = scaled_edge(V, (k + 1) % n);
+    if (e.size() == 0 || next.size() == 0) return false;
+    const Interval turn = e[0] * next[1] - e[1] * next[0];
+    if (!(turn.lower() > 0)) return false;
+    const Interval nx = e[1], ny = -e[0];  // outward for a counter-clockwise polygon
+    const Interval reach = nx * (Interval(V(0, k)) - cx) + ny * (Interval(V(1, k)) - cy);
+    const Interval q = nx * (P(0, 0) * nx + P(0, 1) * ny) + ny * (P(1, 0) * nx + P(1, 1) * ny);
+    if (!(sqrt(Interval(std::max(q.upper(), 0.0))).upper() <= reach.lower())) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Eigen::MatrixXd outer_polygon(const Ellipsoid& E, int n) {
   if (E.dimension() != 2) throw InputError("outer_polygon: the ellipsoid is not 2-D");
   if (n < 3) throw InputError("outer_polygon: need at least 3 vertices");
@@ -220,16 +264,28 @@ Eigen::MatrixXd outer_polygon(const Ellipsoid& E, int n) {
   const Eigen::Vector2d l = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   Eigen::Matrix2d Q = es.eigenvectors();
   if (Q.determinant() < 0) Q.col(1) *= -1;  // keep the vertices counter-clockwise
-  const Eigen::Matrix2d L = Q * l.asDiagonal();
-  // A regular n-gon with inradius 1 (circumradius 1/cos(pi/n)) contains the unit disc; its
-  // image under L contains E. The small factor absorbs rounding in L.
-  const double R = (1.0 + 1e-9) / std::cos(std::numbers::pi / n);
-  Eigen::MatrixXd V(2, n);
-  for (int k = 0; k < n; ++k) {
-    const double t = 2.0 * std::numbers::pi * (k + 0.5) / n;
-    V.col(k) = E.center() + L * Eigen::Vector2d(R * std::cos(t), R * std::sin(t));
+  // A regular n-gon with inradius 1 (circumradius 1/cos(pi/n)) contains the unit disc; its image
+  // under Q diag(l) contains E, up to rounding: of the eigen-decomposition (an absolute error of
+  // about eps l_max^2 in the small eigenvalue, so the minor axis can be off by sqrt(eps) l_max),
+  // of the vertices (half an ulp of the centre) and of the trigonometry. So the axes grow by a
+  // relative delta, delta l_max and a few ulps of the centre, and the result is accepted only
+  // when polygon_contains proves it; else the margins grow 32-fold and it is tried again.
+  const double R = 1.0 / std::cos(std::numbers::pi / n);
+  const double lmax = l.maxCoeff();
+  const double ulps = 8 * std::numeric_limits<double>::epsilon() * E.center().cwiseAbs().maxCoeff() +
+                      std::numeric_limits<double>::min();
+  double delta = 0x1p-40, absolute = ulps;
+  for (int attempt = 0; attempt < 12; ++attempt, delta *= 32, absolute *= 32) {
+    const Eigen::Vector2d axes = l * (1 + delta) + Eigen::Vector2d::Constant(delta * lmax + absolute);
+    const Eigen::Matrix2d L = Q * axes.asDiagonal();
+    Eigen::MatrixXd V(2, n);
+    for (int k = 0; k < n; ++k) {
+      const double t = 2.0 * std::numbers::pi * (k + 0.5) / n;
+      V.col(k) = E.center() + L * Eigen::Vector2d(R * std::cos(t), R * std::sin(t));
+    }
+    if (polygon_contains(V, E)) return V;
   }
-  return V;
+  throw NumericalError("outer_polygon: no polygon could be proven to contain the ellipsoid (overflow?)");
 }
 
 }  // namespace sets

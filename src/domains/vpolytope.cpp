@@ -1,8 +1,10 @@
 #include "sets/domains/vpolytope.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "sets/core/error.hpp"
 #include "sets/numeric/linear_program.hpp"
@@ -45,8 +47,53 @@ BoolInterval contains(const VPolytope& V, const Eigen::Ref<const Eigen::VectorXd
   return !certified_is_empty(lp);
 }
 
+namespace {
+
+// Points whose convex hull contains the box b: its centre c if b is a point, else the 2 m'
+// corners c +- m' r_j e_j of a cross-polytope over the m' coordinates of nonzero width (a point
+// y of the box has sum_j |y_j - c_j| / (m' r_j) <= 1), each rounded outward.
+void append_cross_polytope(const IntervalVector& b, std::vector<Eigen::VectorXd>& out) {
+  const auto m = b.size();
+  Eigen::VectorXd c(m), r(m);
+  int wide = 0;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    if (!std::isfinite(b[j].lower()) || !std::isfinite(b[j].upper()))
+      throw NumericalError("linear_map(VPolytope): the image of a point overflows");
+    c[j] = b[j].lower() == b[j].upper() ? b[j].lower() : midpoint(b[j]);
+    r[j] = std::max((Interval(b[j].upper()) - c[j]).upper(), (Interval(c[j]) - b[j].lower()).upper());
+    wide += r[j] > 0;
+  }
+  if (wide == 0) {
+    out.push_back(c);
+    return;
+  }
+  for (Eigen::Index j = 0; j < m; ++j) {
+    if (r[j] == 0) continue;
+    const Interval reach = Interval(static_cast<double>(wide)) * r[j];
+    Eigen::VectorXd p = c;
+    p[j] = (Interval(c[j]) + reach).upper();
+    out.push_back(p);
+    p[j] = (Interval(c[j]) - reach).lower();
+    out.push_back(p);
+    if (!std::isfinite(out.end()[-2][j]) || !std::isfinite(p[j]))
+      throw NumericalError("linear_map(VPolytope): the image of a point overflows");
+  }
+}
+
+}  // namespace
+
 VPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V) {
   if (A.cols() != V.dimension()) throw InputError("linear_map: matrix has the wrong number of columns");
+  std::vector<Eigen::VectorXd> points;
+  const Eigen::MatrixXd Ad = A;
+  for (int k = 0; k < V.num_points(); ++k) append_cross_polytope(multiply(Ad, detail::iv(V.points().col(k))), points);
+  Eigen::MatrixXd P(A.rows(), static_cast<Eigen::Index>(points.size()));
+  for (std::size_t k = 0; k < points.size(); ++k) P.col(static_cast<Eigen::Index>(k)) = points[k];
+  return VPolytope(std::move(P));
+}
+
+VPolytope unreliable_linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V) {
+  if (A.cols() != V.dimension()) throw InputError("unreliable_linear_map: matrix has the wrong number of columns");
   return VPolytope(A * V.points());
 }
 

@@ -39,3 +39,26 @@ TEST_P(RandomSuiteSlice, CompletesInventsNothingAndMissesNoConcealedEffect) {
 // stage calls, depending on the run (the search has a 10 s guard); no error hook turns it into an
 // exception yet (GUIDE: known traps).
 INSTANTIATE_TEST_SUITE_P(DevelopmentSeeds, RandomSuiteSlice, ::testing::Range(3000000u, 3000003u));
+
+// The report lists every true value outside its reported interval, with the sets it is the meet
+// of, and only those (scored results made by hand: no diagnosis run).
+TEST(SuiteReport, ListsEveryTrueValueOutsideItsIntervalAndOnlyThose) {
+  SuitePlantResult r;
+  r.name = "plant-a";
+  r.answer = "missing";
+  r.truth.push_back({});
+  r.truth.back().name = "coulomb_friction";
+  r.named = {"coulomb_friction"};
+  r.places = {"v"};
+  r.coverage.push_back({"coulomb_friction", "Fc", 1.5, 1.1, 1.2, 1.15, 1.1, 1.2, false, 0, 0, 1.14, 1.16, false});
+  r.coverage.push_back({"coulomb_friction", "Fv", 0.3, 0.25, 0.35, 0.31, 0.2, 0.4, true, 0.25, 0.35, 0.3, 0.32, true});
+  const std::string text = suite_report({r}, false);
+  EXPECT_NE(text.find("1 of 2"), std::string::npos);
+  const auto at = text.find("True values outside the reported interval");
+  ASSERT_NE(at, std::string::npos);
+  const std::string misses = text.substr(at);
+  EXPECT_NE(misses.find("| plant-a | coulomb_friction | Fc | 1.5 | [1.1, 1.2] |"), std::string::npos) << misses;
+  EXPECT_EQ(misses.find("| Fv |"), std::string::npos) << misses;
+  r.coverage.front().inside = true;
+  EXPECT_EQ(suite_report({r}, false).find("True values outside"), std::string::npos);
+}

@@ -100,3 +100,36 @@ TEST(IntervalMatrix, BoxBoundsAreChecked) {
   EXPECT_FALSE(sets::contains(box, Eigen::Vector2d(0.5, std::nextafter(2.0, 3.0))));
   EXPECT_TRUE(sets::contains(box, Eigen::Vector2d(0.0, 2.0)));
 }
+
+// The batched midpoint/radius (one rounding-mode switch per call) give the scalar functions'
+// doubles bit for bit, whatever mode the caller is in, infinite ends included.
+RC_GTEST_PROP(IntervalMatrix, BatchedMidpointAndRadiusEqualTheScalarOnes, (bool upward_caller)) {
+  const int rows = *rc::gen::inRange(0, 5), cols = *rc::gen::inRange(0, 5);
+  const double inf = std::numeric_limits<double>::infinity();
+  IntervalMatrix A(rows, cols);
+  for (Eigen::Index k = 0; k < A.size(); ++k) {
+    const int kind = *rc::gen::inRange(0, 8);
+    A(k) = kind == 0 ? Interval(-inf, *gen_double()) : kind == 1 ? Interval(*gen_double(), inf) : *gen_interval();
+  }
+  const IntervalVector v = A.reshaped();
+  Eigen::MatrixXd mid, rad;
+  Eigen::VectorXd vmid, vrad;
+  if (upward_caller) {
+    sets::RoundingScope upward;
+    mid = sets::midpoint(A), rad = sets::radius(A), vmid = sets::midpoint(v), vrad = sets::radius(v);
+  } else {
+    mid = sets::midpoint(A), rad = sets::radius(A), vmid = sets::midpoint(v), vrad = sets::radius(v);
+  }
+  const auto same = [](double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; };
+  for (Eigen::Index k = 0; k < A.size(); ++k) {
+    RC_ASSERT(same(mid(k), sets::midpoint(A(k))));
+    RC_ASSERT(same(rad(k), sets::radius(A(k))));
+    RC_ASSERT(same(vmid(k), mid(k)));
+    RC_ASSERT(same(vrad(k), rad(k)));
+  }
+  // 1/3 + 1/3: the radius of [1/3 rounded down, 1/3 rounded up] is rounded up, not to nearest.
+  const Interval third = Interval(1.0) / Interval(3.0);
+  const IntervalVector t = IntervalVector::Constant(1, third);
+  RC_ASSERT(Q(sets::midpoint(t)(0)) - Q(sets::radius(t)(0)) <= Q(third.lower()));
+  RC_ASSERT(Q(sets::midpoint(t)(0)) + Q(sets::radius(t)(0)) >= Q(third.upper()));
+}

@@ -10,9 +10,8 @@
 //   support(S, d)       a rigorous UPPER bound on max_{x in S} d^T x (+inf if it cannot be certified)
 //   outer_box(S)        a box that CONTAINS S (+-inf ends where S is unbounded)
 //   contains(S, x)      yes / no only when proven; unknown otherwise
-//   linear_map(A, S)    a set of the same type that contains {A x : x in S}, EXCEPT for VPolytope
-//                       (points mapped in floating point: approximate) and throwing for an
-//                       HPolytope and a singular or non-square A
+//   linear_map(A, S)    a set of the same type that contains {A x : x in S} (throwing for an
+//                       HPolytope and a singular or non-square A)
 //   to_string(S)        text with 17 significant digits that sets::from_string (set_io.hpp)
 //                       reads back
 // minkowski_sum, translate and the strip intersections exist for Zonotope and Ellipsoid only and
@@ -82,7 +81,11 @@ Zonotope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const Zonotope& 
 /// Centre A c, shape A P A^T, enlarged for rounding so that it contains the exact image. A may be
 /// rectangular.
 Ellipsoid linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const Ellipsoid& E);
-/// Points mapped in floating point, rounded to nearest: approximate.
+/// Contains the exact image: each point's image is enclosed in an interval box, and the box in
+/// the cross-polytope c +- m' r_j e_j (m' its coordinates of nonzero width r_j; the l1 ball of
+/// radius m' contains the unit cube), whose 2 m' corners (rounded outward) replace the point.
+/// A point whose image is exact stays one point, so at most 2 m points per point. For plots,
+/// unreliable_linear_map (vpolytope.hpp) maps to nearest without the extra points.
 VPolytope linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V);
 /// For square invertible A: normals A^{-T} a_i (rounded) with certified offsets, so the result
 /// contains A P and equals it up to rounding. Throws UnsupportedError for singular or non-square

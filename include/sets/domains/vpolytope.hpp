@@ -3,7 +3,8 @@
 // outer_box, contains, linear_map, to_string) are declared in set_operations.hpp, the conversions
 // to and from other set types in conversions.hpp.
 //
-// Guarantees. `outer_box` and `support` are exact/rigorous (maxima over the points in interval
+// Guarantees. `linear_map` contains the exact image (`unreliable_linear_map` does not).
+// `outer_box` and `support` are exact/rigorous (maxima over the points in interval
 // arithmetic). `contains` answers yes/no only with an exact certificate (convex weights solved
 // in rationals, or a Farkas certificate; sets/numeric/lp_certificate.hpp), else unknown.
 // `convex_hull` runs in CGAL's exact arithmetic (Epeck) in 1-3 dimensions.
@@ -32,6 +33,11 @@ class VPolytope {
  private:
   Eigen::MatrixXd V_;
 };
+
+/// The points mapped in floating point, rounded to nearest: NOT an outer approximation (the
+/// exact image of a point can lie outside; linear_map is the outward version). For plots and as
+/// input to exact arithmetic.
+VPolytope unreliable_linear_map(const Eigen::Ref<const Eigen::MatrixXd>& A, const VPolytope& V);
 
 /// Only the vertices of the hull (CGAL, exact), in counter-clockwise order in 2-D.
 /// 1-3 dimensions; UnsupportedError above.

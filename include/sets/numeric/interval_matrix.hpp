@@ -46,11 +46,14 @@ Eigen::Matrix<Interval, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> 
 
 Eigen::VectorXd lower(const IntervalVector& x);
 Eigen::VectorXd upper(const IntervalVector& x);
+// midpoint() and radius() of every entry, bit for bit the scalar ones, with one rounding-mode
+// switch per call instead of several per entry.
 Eigen::VectorXd midpoint(const IntervalVector& x);
 Eigen::VectorXd radius(const IntervalVector& x);  // rounded up
 Eigen::MatrixXd lower(const IntervalMatrix& x);
 Eigen::MatrixXd upper(const IntervalMatrix& x);
 Eigen::MatrixXd midpoint(const IntervalMatrix& x);
+Eigen::MatrixXd radius(const IntervalMatrix& x);  // rounded up
 
 /// Box [lo, hi]; throws InputError if lo > hi somewhere or a bound is NaN.
 IntervalVector make_box(const Eigen::Ref<const Eigen::VectorXd>& lo,

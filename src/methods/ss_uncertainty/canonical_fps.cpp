@@ -9,26 +9,29 @@ namespace sets {
 namespace {
 
 bool is_zero(const Interval& x) { return x.lower() == 0 && x.upper() == 0; }
+bool is_zero(double x) { return x == 0; }
 
 int find_root(std::vector<int>& parent, int j) {
   while (parent[j] != j) j = parent[j] = parent[parent[j]];
   return j;
 }
 
-}  // namespace
-
-CanonicalFps::CanonicalFps(const IntervalMatrix& Psi, const IntervalVector& Y)
-    : dimension_(static_cast<int>(Psi.cols())) {
+// The grouping of both constructors, for interval or exact regressors. Loops run down the
+// columns (the matrices are column-major: a 5 000 x 12 regression read row by row misses the
+// cache on every entry).
+template <class Matrix>
+void group_rows(const Matrix& Psi, const IntervalVector& Y, std::vector<CanonicalFps::Block>& blocks,
+                std::vector<int>& falsified) {
   if (Psi.rows() != Y.size())
     throw InputError("CanonicalFps: " + std::to_string(Psi.rows()) + " regressor rows but " +
                      std::to_string(Y.size()) + " outputs");
-  const int p = dimension_;
+  const int p = static_cast<int>(Psi.cols());
   // Union-find over the parameters: a row joins every parameter it involves.
   std::vector<int> parent(static_cast<std::size_t>(p));
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<int> first_column(static_cast<std::size_t>(Psi.rows()), -1);
-  for (Eigen::Index t = 0; t < Psi.rows(); ++t)
-    for (int j = 0; j < p; ++j) {
+  for (int j = 0; j < p; ++j)
+    for (Eigen::Index t = 0; t < Psi.rows(); ++t) {
       if (is_zero(Psi(t, j))) continue;
       int& f = first_column[static_cast<std::size_t>(t)];
       if (f < 0) f = j;
@@ -38,33 +41,44 @@ CanonicalFps::CanonicalFps(const IntervalMatrix& Psi, const IntervalVector& Y)
   for (Eigen::Index t = 0; t < Psi.rows(); ++t) {
     const int f = first_column[static_cast<std::size_t>(t)];
     if (f < 0) {
-      if (!(Y[t].lower() <= 0 && 0 <= Y[t].upper())) falsified_.push_back(static_cast<int>(t));
+      if (!(Y[t].lower() <= 0 && 0 <= Y[t].upper())) falsified.push_back(static_cast<int>(t));
       continue;
     }
     int& b = block_of_root[static_cast<std::size_t>(find_root(parent, f))];
     if (b < 0) {
-      b = static_cast<int>(blocks_.size());
-      blocks_.emplace_back();
+      b = static_cast<int>(blocks.size());
+      blocks.emplace_back();
     }
-    blocks_[static_cast<std::size_t>(b)].rows.push_back(static_cast<int>(t));
+    blocks[static_cast<std::size_t>(b)].rows.push_back(static_cast<int>(t));
   }
   for (int j = 0; j < p; ++j) {
     const int b = block_of_root[static_cast<std::size_t>(find_root(parent, j))];
     if (b < 0)
       throw InputError("CanonicalFps: parameter " + std::to_string(j) + " appears in no row (it is not identifiable)");
-    blocks_[static_cast<std::size_t>(b)].parameters.push_back(j);
+    blocks[static_cast<std::size_t>(b)].parameters.push_back(j);
   }
-  for (Block& block : blocks_) {
+  for (CanonicalFps::Block& block : blocks) {
     const auto n = static_cast<Eigen::Index>(block.rows.size());
     const auto m = static_cast<Eigen::Index>(block.parameters.size());
     IntervalMatrix phi(n, m);
     IntervalVector y(n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      for (Eigen::Index q = 0; q < m; ++q) phi(k, q) = Psi(block.rows[k], block.parameters[q]);
-      y[k] = Y[block.rows[k]];
-    }
+    for (Eigen::Index q = 0; q < m; ++q)
+      for (Eigen::Index k = 0; k < n; ++k) phi(k, q) = Interval(Psi(block.rows[k], block.parameters[q]));
+    for (Eigen::Index k = 0; k < n; ++k) y[k] = Y[block.rows[k]];
     block.set = FeasibleParameterSet::from_interval_data(phi, y);
   }
+}
+
+}  // namespace
+
+CanonicalFps::CanonicalFps(const IntervalMatrix& Psi, const IntervalVector& Y)
+    : dimension_(static_cast<int>(Psi.cols())) {
+  group_rows(Psi, Y, blocks_, falsified_);
+}
+
+CanonicalFps::CanonicalFps(const Eigen::MatrixXd& Psi, const IntervalVector& Y)
+    : dimension_(static_cast<int>(Psi.cols())) {
+  group_rows(Psi, Y, blocks_, falsified_);
 }
 
 int CanonicalFps::size() const {

@@ -81,18 +81,16 @@ ResidualBound residual_bound(const CanonicalRegression& r, const Eigen::Ref<cons
   return {ell, arg};
 }
 
-LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOptions& o) {
-  const int m = static_cast<int>(r.Psi.cols());
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(r.Psi);
-  qr.setThreshold(1e-10);
-  if (qr.rank() < m)
-    throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(qr.rank()) + " < " +
-                     std::to_string(m) + "); the parameters are not identifiable");
+namespace {
+
+// The domain from theta0, the unweighted least-squares solution of the regression (its rank
+// already checked).
+LevelSetDomain level_set_from(const CanonicalRegression& r, const Eigen::VectorXd& theta0, const LevelSetOptions& o) {
   if (!(o.level_factor > 0) || !std::isfinite(o.level_factor))
     throw InputError("level_set_domain: level_factor must be finite and > 0");
   LevelSetDomain d;
   if (o.norm != ResidualNorm::per_equation) {
-    d.theta = qr.solve(r.y);
+    d.theta = theta0;
     d.R = r.Psi.transpose() * r.Psi;
     d.residuals = r.y - r.Psi * d.theta;
     d.j_min = 0.5 * d.residuals.squaredNorm();
@@ -106,7 +104,7 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
     return d;
   }
   // Per equation: l_e from the unweighted fit, then the normalised (weighted) criterion.
-  const Eigen::VectorXd eps0 = r.y - r.Psi * qr.solve(r.y);
+  const Eigen::VectorXd eps0 = r.y - r.Psi * theta0;
   d.ell_per_equation = Eigen::VectorXd::Zero(r.equations);
   for (int k = 0; k < eps0.size(); ++k)
     d.ell_per_equation[r.equation[k]] = std::max(d.ell_per_equation[r.equation[k]], std::abs(eps0[k]));
@@ -127,6 +125,24 @@ LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOpti
   return d;
 }
 
+}  // namespace
+
+LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOptions& o) {
+  const int m = static_cast<int>(r.Psi.cols());
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(r.Psi);
+  qr.setThreshold(least_squares_rank_threshold);
+  if (qr.rank() < m)
+    throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(qr.rank()) + " < " +
+                     std::to_string(m) + "); the parameters are not identifiable");
+  return level_set_from(r, qr.solve(r.y), o);
+}
+
+LevelSetDomain level_set_domain(const PropagatorResult& id, const LevelSetOptions& o) {
+  if (id.theta.size() != id.regression.Psi.cols() || id.theta.size() == 0)
+    throw InputError("level_set_domain: the identification result has no least-squares estimate");
+  return level_set_from(id.regression, id.theta, o);
+}
+
 CanonicalFps regression_fps(const CanonicalRegression& r, double bound) {
   return regression_fps(r, Eigen::VectorXd::Constant(r.equations, bound));
 }
@@ -137,8 +153,16 @@ CanonicalFps regression_fps(const CanonicalRegression& r, const Eigen::Ref<const
     if (!(bounds[e] >= 0) || !std::isfinite(bounds[e]))
       throw InputError("regression_fps: the bound of equation " + std::to_string(e) + " must be finite and >= 0");
   IntervalVector Y(r.y.size());
-  for (Eigen::Index k = 0; k < r.y.size(); ++k) Y[k] = interval_around(r.y[k], bounds[r.equation[k]]);
-  return CanonicalFps(to_interval(r.Psi), Y);
+  {
+    // interval_around(y, bound) for every row, with one rounding-mode switch for all of them.
+    RoundingScope upward;
+    using I = UnprotectedInterval;
+    for (Eigen::Index k = 0; k < r.y.size(); ++k) {
+      const double b = bounds[r.equation[k]];
+      Y[k] = I(r.y[k]) + I(-b, b);
+    }
+  }
+  return CanonicalFps(r.Psi, Y);
 }
 
 PairView pair_view(const Ellipsoid& E, int i, int j) {

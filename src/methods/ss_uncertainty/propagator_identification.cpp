@@ -327,7 +327,7 @@ PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
   const Eigen::MatrixXd Z = past_input_regressor(u, p, o.estimate_d);
   const Eigen::MatrixXd Y = y.bottomRows(M);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Z);
-  qr.setThreshold(1e-10);
+  qr.setThreshold(least_squares_rank_threshold);
   if (qr.rank() < cols)
     throw InputError("the inputs are not persistently exciting of order p = " + std::to_string(p) +
                      ": the regressor [u_p; u] has rank " + std::to_string(qr.rank()) + " < " + std::to_string(cols));
@@ -385,7 +385,7 @@ PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
   // Step 4: least squares for theta~.
   r.regression = canonical_regression(r.structure, r.states, p, u, y);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr2(r.regression.Psi);
-  qr2.setThreshold(1e-10);
+  qr2.setThreshold(least_squares_rank_threshold);
   if (qr2.rank() < r.structure.parameter_count())
     throw InputError("the canonical parameters are not identifiable from these data: regressor rank " +
                      std::to_string(qr2.rank()) + " < " + std::to_string(r.structure.parameter_count()));

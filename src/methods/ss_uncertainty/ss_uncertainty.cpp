@@ -6,7 +6,7 @@ SsUncertaintyResult ss_uncertainty(const Eigen::Ref<const Eigen::MatrixXd>& u,
                                    const Eigen::Ref<const Eigen::MatrixXd>& y, const SsUncertaintyOptions& options) {
   SsUncertaintyResult r;
   r.identification = identify_propagator(u, y, options.identification);
-  r.estimate_level_set = level_set_domain(r.identification.regression, options.level);
+  r.estimate_level_set = level_set_domain(r.identification, options.level);  // reuses its least squares
   r.estimate_fps = regression_fps(r.identification.regression, r.estimate_level_set.ell_per_equation);
   if (options.estimate_fps_pui) r.estimate_fps_pui = pui(r.estimate_fps);
   if (options.guaranteed) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "sets/core/error.hpp"
 #include "numeric/verified_linear_algebra.hpp"
@@ -58,18 +59,31 @@ VerifiedGram verify_gram(const Eigen::MatrixXd& Z) {
     const I entry = gM * I(R.diagonal().maxCoeff()) / (I(1.0) - gM) +
                     I(static_cast<double>(M)) * I(std::numeric_limits<double>::denorm_min());
     const I eta1 = I(static_cast<double>(c)) * entry;
-    for (Eigen::Index i = 0; i < c; ++i)
-      for (Eigen::Index j = 0; j < c; ++j) {
-        I e(i == j ? 1.0 : 0.0), d(0.0);
-        if (j <= i) {
-          for (Eigen::Index k = j; k <= i; ++k) e -= I(g.X(i, k)) * I(L(k, j));
-          for (Eigen::Index k = 0; k <= j; ++k) d += I(L(i, k)) * I(L(j, k));
-          d -= I(R(i, j));
-        } else {
-          d = I(0.0);  // filled from the symmetric entry below
+    // Sums of products of doubles as [lo, hi] in upward rounding: x y rounded up is x * y,
+    // rounded down -((-x) * y); a - b rounded down is -(b - a). These are the ends Boost's
+    // interval operations give on degenerate intervals (up to the sign of a zero), without
+    // their case analysis on signs: about c^3 / 3 products, the bulk of this function.
+    for (Eigen::Index j = 0; j < c; ++j)
+      for (Eigen::Index i = 0; i < c; ++i) {
+        if (j > i) {  // E is lower triangular; D is filled from the symmetric entry below
+          E(i, j) = Interval(0.0);
+          continue;
         }
-        E(i, j) = e;
-        D(i, j) = d;
+        double elo = i == j ? 1.0 : 0.0, ehi = elo, dlo = 0.0, dhi = 0.0;
+        for (Eigen::Index k = j; k <= i; ++k) {
+          const double x = g.X(i, k), l = L(k, j);
+          elo = -(x * l - elo);   // e - [down(x l), up(x l)]: lower end down(elo - up(x l))
+          ehi = ehi + (-x) * l;   // upper end up(ehi - down(x l)) = up(ehi + up(-x l))
+        }
+        for (Eigen::Index k = 0; k <= j; ++k) {
+          const double a = L(i, k), b = L(j, k);
+          dlo = -((-dlo) + (-a) * b);  // down(dlo + down(a b)) = -up(-dlo + up(-a b))
+          dhi = dhi + a * b;
+        }
+        dlo = -(R(i, j) - dlo);
+        dhi = dhi - R(i, j);
+        E(i, j) = Interval(elo, ehi);
+        D(i, j) = Interval(dlo, dhi);
       }
     for (Eigen::Index i = 0; i < c; ++i)
       for (Eigen::Index j = i + 1; j < c; ++j) D(i, j) = D(j, i);
@@ -99,12 +113,20 @@ QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::MatrixXd& W
   std::vector<Eigen::Index> used;
   for (Eigen::Index j = 0; j < W.cols(); ++j)
     if (!W.col(j).isZero(0)) used.push_back(j);
-  Eigen::MatrixXd Wu(W.rows(), static_cast<Eigen::Index>(used.size())), Xu(g.X.rows(), Wu.cols());
-  for (std::size_t q = 0; q < used.size(); ++q) {
-    Wu.col(static_cast<Eigen::Index>(q)) = W.col(used[q]);
-    Xu.col(static_cast<Eigen::Index>(q)) = g.X.col(used[q]);
+  const auto m = static_cast<Eigen::Index>(used.size()), c = g.X.rows();
+  Eigen::MatrixXd Wu(W.rows(), m), S(W.rows(), c);  // row t of S: fl(X a_t)
+  for (Eigen::Index q = 0; q < m; ++q) Wu.col(q) = W.col(used[static_cast<std::size_t>(q)]);
+  if (m > 0 && used.back() == m - 1) {
+    // The columns used are 0..m-1 (the windows of the propagator functionals): X is lower
+    // triangular, so its top m x m corner is too and half of the product is zeros. Leaving
+    // them out changes no bound (gamma_c covers any order of summation, zeros add exactly).
+    S.leftCols(m).noalias() = Wu * g.X.topLeftCorner(m, m).transpose().triangularView<Eigen::Upper>();
+    if (c > m) S.rightCols(c - m).noalias() = Wu * g.X.bottomLeftCorner(c - m, m).transpose();
+  } else {
+    Eigen::MatrixXd Xu(c, m);
+    for (Eigen::Index q = 0; q < m; ++q) Xu.col(q) = g.X.col(used[static_cast<std::size_t>(q)]);
+    S.noalias() = Wu * Xu.transpose();
   }
-  const Eigen::MatrixXd S = Wu * Xu.transpose();  // row t: fl(X a_t)
   const Eigen::VectorXd s2 = S.rowwise().squaredNorm(), w2 = Wu.rowwise().squaredNorm();
   QuadraticBounds b{Eigen::VectorXd(W.rows()), Eigen::VectorXd(W.rows())};
   RoundingScope upward;
@@ -316,18 +338,17 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const
     const Eigen::VectorXd& go = g[static_cast<std::size_t>(o)];
     // Propagator: x^_k(t) = a^T g^ with a = u_p(t+l) without its last l blocks; the stored x^
     // is a floating-point product (error <= gamma_cols ||a|| ||g_c||).
+    // Row c of every W below is a window of u: written block column by block column (contiguous).
     Eigen::MatrixXd Wp = Eigen::MatrixXd::Zero(K, cols);
-    for (int c = 0; c < K; ++c)
-      for (int b = 0; b + l < p; ++b) Wp.block(c, b * nu, 1, nu) = u.row(p + c + l - p + b);
+    for (int b = 0; b + l < p; ++b) Wp.block(0, b * nu, K, nu) = u.middleRows(l + b, K);  // row c: u(c + l + b)
     const double rounding = (Interval(gram.gamma_cols) * Interval(m.g_norm)).upper();
     const Eigen::VectorXd rp = functional_radii(gram, m, Wp, rounding);
     // Output: x_c,k(t) = y_o(t+l) - v - D_o u(t+l) - sum_{j<l} (C_o A^j B) u(t+l-1-j), for t+l < N.
     Eigen::MatrixXd Wo = Eigen::MatrixXd::Zero(K, cols);
-    for (int c = 0; c + l < K; ++c) {
-      const int t = p + c;
-      for (int j = 0; j < l; ++j) Wo.block(c, block(j), 1, nu) = u.row(t + l - 1 - j);
-      if (st.estimate_d()) Wo.block(c, nu * p, 1, nu) = u.row(t + l);
-    }
+    std::vector<Eigen::Index> wo_cols;  // the columns Wo uses, increasing
+    for (int j = 0; j < l; ++j) Wo.block(0, block(j), K - l, nu) = u.middleRows(p + l - 1 - j, K - l);  // u(t+l-1-j)
+    if (st.estimate_d()) Wo.block(0, nu * p, K - l, nu) = u.middleRows(p + l, K - l);                  // u(t+l)
+    for (Eigen::Index j = nu * (p - l); j < cols; ++j) wo_cols.push_back(j);  // blocks p-1-j, j < l; D
     const Eigen::VectorXd ro = l == 0 && !st.estimate_d() ? Eigen::VectorXd::Zero(K)
                                                           : functional_radii(gram, m, Wo, 0.0);
     RoundingScope upward;
@@ -337,7 +358,7 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const
       I x = I(id.states(k, c)) + I(-radius, radius);
       if (c + l < K) {
         I obs(y(t + l, o));
-        for (Eigen::Index j = 0; j < cols; ++j)
+        for (const Eigen::Index j : wo_cols)
           if (Wo(c, j) != 0) obs -= I(Wo(c, j)) * I(go[j]);
         const double noise = (I(a.noise_bound[o]) + I(ro[c])).upper();
         obs += I(-noise, noise);
@@ -357,7 +378,7 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const
     const int l = st.rows()[static_cast<std::size_t>(i)].lag, o = st.rows()[static_cast<std::size_t>(i)].output;
     const MarkovEllipsoid& m = ell[static_cast<std::size_t>(o)];
     Eigen::MatrixXd Wc = Eigen::MatrixXd::Zero(K - 1, cols);
-    for (int c = 0; c + 1 < K; ++c) Wc.block(c, block(l), 1, nu) = u.row(p + c);
+    Wc.block(0, block(l), K - 1, nu) = u.middleRows(p, K - 1);  // row c: u(p + c)
     const Eigen::VectorXd rc = functional_radii(gram, m, Wc, 0.0);
     RoundingScope upward;
     // Rounding of the two stored states: gamma_cols ||a|| ||g_c|| each (see above).

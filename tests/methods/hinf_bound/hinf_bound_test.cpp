@@ -303,21 +303,29 @@ TEST(HinfDataBound, TailSlopeBoundHolds) {
   }
 }
 
-TEST(HinfWorstCase, FalsifiedPriorsGiveAnEmptySet) {
-  std::mt19937_64 rng(5);
+namespace {
+// First-order G0 = 0.5 z^-1 / (1 - 0.5 z^-1), 300 uniform inputs, uniform output noise of the
+// given amplitude; FIR basis of order 6, priors M = 1, rho = 0.6, the noise bound v_bar claimed.
+HinfBoundResult first_order_run(unsigned seed, double noise, double v_bar, NoiseModel model) {
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U(-1, 1);
   Eigen::VectorXd u(300);
   for (auto& x : u) x = U(rng);
   const FirstOrderSum G0{{0.5}, {0.5}};
   Eigen::VectorXd y = G0.simulate(u);
-  for (auto& x : y) x += 0.5 * U(rng);  // noise far above the claimed bound
+  for (auto& x : y) x += noise * U(rng);
   HinfPriors p;
   p.M = 1;
   p.rho = 0.6;
   HinfBoundOptions o;
-  o.uncertainty.noise = NoiseModel::bounded;
-  o.uncertainty.v_bar = 0.01;
-  const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), 6, p, uniform_grid(10)}, o);
+  o.uncertainty.noise = model;
+  o.uncertainty.v_bar = v_bar;
+  return hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), 6, p, uniform_grid(10)}, o);
+}
+}  // namespace
+
+TEST(HinfWorstCase, FalsifiedPriorsGiveAnEmptySet) {
+  const HinfBoundResult R = first_order_run(5, 0.5, 0.01, NoiseModel::bounded);  // noise far above the claimed bound
   EXPECT_TRUE(R.set.empty());
   EXPECT_EQ(R.set.consistency.falsified, sets::Falsified::yes);
   EXPECT_FALSE(R.set.consistency.conflict.samples.empty());  // which samples conflict, for the user
@@ -325,25 +333,10 @@ TEST(HinfWorstCase, FalsifiedPriorsGiveAnEmptySet) {
 }
 
 TEST(HinfWorstCase, ConsistentDataSayNotFalsifiedAndTheStochasticModelDoesNotAsk) {
-  std::mt19937_64 rng(6);
-  std::uniform_real_distribution<double> U(-1, 1);
-  Eigen::VectorXd u(300);
-  for (auto& x : u) x = U(rng);
-  const FirstOrderSum G0{{0.5}, {0.5}};
-  Eigen::VectorXd y = G0.simulate(u);
-  for (auto& x : y) x += 0.01 * U(rng);  // inside the claimed bound
-  HinfPriors p;
-  p.M = 1;
-  p.rho = 0.6;
-  HinfBoundOptions o;
-  o.uncertainty.noise = NoiseModel::bounded;
-  o.uncertainty.v_bar = 0.02;
-  const HinfStructure st{OrthonormalBasis::fir(), 6, p, uniform_grid(10)};
-  const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, st, o);
+  const HinfBoundResult R = first_order_run(6, 0.01, 0.02, NoiseModel::bounded);  // inside the claimed bound
   EXPECT_FALSE(R.set.empty());
   EXPECT_NE(R.set.consistency.falsified, sets::Falsified::yes);
-  o.uncertainty.noise = NoiseModel::stochastic;
-  EXPECT_EQ(hinf_bound(HinfData{u, y, {}}, st, o).set.consistency.falsified, sets::Falsified::unknown);
+  EXPECT_EQ(first_order_run(6, 0.01, 0.02, NoiseModel::stochastic).set.consistency.falsified, sets::Falsified::unknown);
 }
 
 // Stochastic noise: a small Monte Carlo. With alpha = 0.9 simultaneous over the grid, at most

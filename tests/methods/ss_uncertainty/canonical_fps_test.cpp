@@ -55,6 +55,40 @@ TEST(CanonicalFps, BlocksFollowTheSharedParameters) {
   EXPECT_THROW(sets::CanonicalFps(lonely, d.Y), sets::InputError);
 }
 
+// The constructor from exact regressors groups the same rows into the same blocks with the same
+// sets as the one from interval regressors (a row whose zero pattern joins the two blocks makes
+// one block of all five parameters), and rejects a parameter in no row and a wrong length alike.
+TEST(CanonicalFps, ExactRegressorsGiveTheSameBlocksAsDegenerateIntervals) {
+  for (const bool join : {false, true}) {
+    auto d = block_data(3, 0.0, 50);
+    if (join) d.Psi(44, 4) = sets::Interval(0.5);  // row 44 holds parameters 0, 2 and now 4
+    const Eigen::MatrixXd point = sets::midpoint(d.Psi);
+    const sets::CanonicalFps a(d.Psi, d.Y), b(point, d.Y);
+    ASSERT_EQ(a.blocks().size(), join ? 1u : 2u);
+    ASSERT_EQ(a.blocks().size(), b.blocks().size());
+    for (std::size_t k = 0; k < a.blocks().size(); ++k) {
+      const auto &x = a.blocks()[k], &y = b.blocks()[k];
+      EXPECT_EQ(x.parameters, y.parameters);
+      EXPECT_EQ(x.rows, y.rows);
+      ASSERT_EQ(x.set.size(), y.set.size());
+      const sets::IntervalMatrix px = x.set.regressors(), py = y.set.regressors();
+      const sets::IntervalVector yx = x.set.outputs(), yy = y.set.outputs();
+      EXPECT_EQ(sets::lower(px), sets::lower(py));
+      EXPECT_EQ(sets::upper(px), sets::upper(py));
+      EXPECT_EQ(sets::lower(yx), sets::lower(yy));
+      EXPECT_EQ(sets::upper(yx), sets::upper(yy));
+    }
+    EXPECT_EQ(a.falsified_rows(), b.falsified_rows());
+    EXPECT_EQ(a.contains(d.theta), b.contains(d.theta));
+  }
+  const auto d = block_data(4, 0.0, 30);
+  Eigen::MatrixXd lonely = sets::midpoint(d.Psi);
+  lonely.col(4).setZero();
+  EXPECT_THROW(sets::CanonicalFps(lonely, d.Y), sets::InputError);
+  const Eigen::MatrixXd short_psi = lonely.topRows(20);
+  EXPECT_THROW(sets::CanonicalFps(short_psi, d.Y), sets::InputError);
+}
+
 // Exact regressors: the PUIs per block are those of the one FPS in every parameter (both are
 // certified, so they agree up to the LP tolerance), and membership agrees.
 RC_GTEST_PROP(CanonicalFps, BlockPuisEqualThePuisOfTheWholeSet, ()) {

@@ -62,6 +62,36 @@ TEST(LevelSetUncertainty, ResidualSelectionsAndNorms) {
   EXPECT_GE(box[1].upper() - 10.0, std::sqrt(2 * 9.0 / 3));
 }
 
+// level_set_domain(id) reuses id.theta instead of factorising Psi again: the domain must be the
+// one level_set_domain(id.regression) computes, to the last bit, under every residual norm.
+TEST(LevelSetUncertainty, DomainFromIdentificationEqualsDomainFromRegression) {
+  const auto sys = sets::farah::system();
+  std::mt19937_64 rng(7);
+  const auto data = sets::farah::simulate(sys, 300, 20.0, rng);
+  sets::PropagatorOptions po;
+  po.order = 3;
+  po.past = 10;
+  const auto id = sets::identify_propagator(data.u, data.y, po);
+  for (const auto norm : {sets::ResidualNorm::entrywise, sets::ResidualNorm::sample_euclidean,
+                          sets::ResidualNorm::per_equation}) {
+    sets::LevelSetOptions o;
+    o.norm = norm;
+    const auto a = sets::level_set_domain(id, o), b = sets::level_set_domain(id.regression, o);
+    EXPECT_EQ(a.theta, b.theta) << sets::to_string(norm);
+    EXPECT_EQ(a.R, b.R);
+    EXPECT_EQ(a.residuals, b.residuals);
+    EXPECT_EQ(a.ell_per_equation, b.ell_per_equation);
+    EXPECT_EQ(a.ell, b.ell);
+    EXPECT_EQ(a.ell_row, b.ell_row);
+    EXPECT_EQ(a.j_min, b.j_min);
+    EXPECT_EQ(a.j_d, b.j_d);
+    EXPECT_EQ(a.ellipsoid.center(), b.ellipsoid.center());
+    EXPECT_EQ(a.ellipsoid.shape(), b.ellipsoid.shape());
+  }
+  sets::PropagatorResult empty;
+  EXPECT_THROW(sets::level_set_domain(empty), sets::InputError);
+}
+
 TEST(LevelSetUncertainty, FpsLeavesOutRowsWithoutParametersAndReportsThem) {
   auto r = tiny_regression();
   r.Psi.row(1).setZero();  // a residual-only row (unit C row with D known)

@@ -54,6 +54,10 @@ struct LevelSetDomain {
 /// Least squares and the level-set ellipsoid of a regression. Throws InputError when R is
 /// singular (the parameters are not identifiable) or no residual row is selected.
 LevelSetDomain level_set_domain(const CanonicalRegression& regression, const LevelSetOptions& options = {});
+/// The same for id.regression, starting from id.theta: identify_propagator has already solved
+/// this least-squares problem (same QR, same threshold) and checked its rank, so the domain is
+/// the same to the last bit without factorising Psi again. Throws InputError when id has no theta.
+LevelSetDomain level_set_domain(const PropagatorResult& id, const LevelSetOptions& options = {});
 
 /// l of a residual vector under the options, and the row (entrywise, per_equation) or first row
 /// of the sample that attains it.

@@ -109,6 +109,10 @@ CanonicalRegression canonical_regression(const CanonicalStructure& structure,
 /// u_p(t) = [u(t-p); ...; u(t-1)] and the u(t) block only `with_current` (D estimated).
 Eigen::MatrixXd past_input_regressor(const Eigen::Ref<const Eigen::MatrixXd>& u, int past, bool with_current);
 
+/// Relative threshold of the rank decisions of the column-pivoted QR least squares (step 1 and
+/// theta~): level_set_domain(regression) repeats the theta~ one with the same threshold.
+inline constexpr double least_squares_rank_threshold = 1e-10;
+
 struct PropagatorOptions {
   int order = 0;                      // n_x
   int past = 20;                      // p >= n_x
