@@ -33,6 +33,14 @@ namespace {
 // A symbol of the model: where its value lives while expressions are evaluated.
 enum class Kind { time, ts, parameter, input, state, signal, sampled, prev };
 
+// One compiled expression. One that is a single symbol (a position's derivative `v`) is read
+// from its slot: muparser's call costs more than the read.
+struct Compiled {
+  mu::Parser parser;
+  const double* symbol = nullptr;
+  double eval() { return symbol ? *symbol : parser.Eval(); }
+};
+
 struct PrevRef {
   int symbol;  // slot of x
   int lag;     // n
@@ -55,7 +63,7 @@ struct Simulator::Impl {
   std::vector<IntersampleInput> input_data;  // each input inside every sample interval
   bool inputs_move = false;                  // some input is not held (foh, bl)
   std::vector<double> initial_state;
-  std::vector<mu::Parser> signal_expr, sampled_expr, deriv_expr, output_expr;
+  std::vector<Compiled> signal_expr, sampled_expr, deriv_expr;
   std::vector<int> deriv_of_state;  // derivative expression index for each state
   std::vector<PrevRef> prevs;
   std::vector<int> recorded_slots;  // inputs, states, signals, sampled
@@ -92,7 +100,8 @@ struct Simulator::Impl {
     return s;
   }
 
-  void compile(mu::Parser& p, const std::string& text, const std::string& where) {
+  void compile(Compiled& c, const std::string& text, const std::string& where) {
+    mu::Parser& p = c.parser;
     // The expression layer checks the text and rewrites prev(x, n) into a generated variable,
     // filled from the history before each sample interval.
     const Checked_expression e = check_expression(
@@ -106,16 +115,15 @@ struct Simulator::Impl {
     try {
       compile_expression(p, e, [&](const std::string& n) { return &slots[static_cast<std::size_t>(slot_of.at(n))]; });
       p.Eval();  // anything muparser still objects to surfaces here, not during simulation
+      if (e.prevs.empty() && e.symbols.size() == 1 && e.text == e.symbols.front()) c.symbol = at(slot_of.at(e.text));
     } catch (const mu::Parser::exception_type& err) {
       throw InputError(model.source + ": cannot parse " + where + ": \"" + printable(text, 120) +
                        "\": " + printable(err.GetMsg(), 200));
     }
   }
 
-  static double eval(mu::Parser& p) { return p.Eval(); }
-
   void eval_signals() {
-    for (std::size_t i = 0; i < signal_expr.size(); ++i) *signal_ptr[i] = signal_expr[i].Eval();
+    for (std::size_t i = 0; i < signal_expr.size(); ++i) *signal_ptr[i] = signal_expr[i].eval();
   }
 
   // Inputs at stage j (0 .. 2 substeps) of sample interval k.
@@ -127,7 +135,7 @@ struct Simulator::Impl {
     *t_ptr = tt;
     for (std::size_t i = 0; i < state_ptr.size(); ++i) *state_ptr[i] = x[i];
     eval_signals();
-    for (std::size_t i = 0; i < state_ptr.size(); ++i) dx[i] = deriv_expr[static_cast<std::size_t>(deriv_of_state[i])].Eval();
+    for (std::size_t i = 0; i < state_ptr.size(); ++i) dx[i] = deriv_expr[static_cast<std::size_t>(deriv_of_state[i])].eval();
   }
 };
 
@@ -299,7 +307,7 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
       I.slots[static_cast<std::size_t>(pr.slot)] = v;
     }
     I.eval_signals();
-    for (std::size_t i = 0; i < I.sampled_expr.size(); ++i) *I.sampled_ptr[i] = I.sampled_expr[i].Eval();
+    for (std::size_t i = 0; i < I.sampled_expr.size(); ++i) *I.sampled_ptr[i] = I.sampled_expr[i].eval();
     I.eval_signals();  // signals may use sampled values
     if (!hist.empty())
       for (std::size_t i = 0; i < nr; ++i) hist[static_cast<std::size_t>(k) * nr + i] = *I.recorded_ptr[i];

@@ -2,11 +2,14 @@
 // that a stalled calibration is never blamed on missing physics), the noise level.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <sstream>
 
 #include "diagnosis/stages.hpp"
 #include "sets/diagnosis/equation_error.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -132,10 +135,29 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   }
   std::ostringstream note;
   note << "calibrated from " << starts.size() << (starts.size() == 1 ? " start" : " starts") << ":";
+  // The starts are independent: one worker job each, with its own simulators (a Simulator is not
+  // shared between threads); notes and choice in start order, so the result is the serial one.
+  std::vector<CalibrationResult> results(starts.size());
+  std::vector<std::ostringstream> notes(starts.size());
+  std::vector<std::exception_ptr> errors(starts.size());
+  std::atomic<std::size_t> next{0};
+  run_worker_threads(c.options.threads, [&] {
+    for (std::size_t i; (i = next++) < starts.size();) {
+      try {
+        const Simulator fast(c.model, c.estimation, {c.options.screening_substeps});
+        const Simulator exact(c.model, c.estimation, {c.options.final_substeps});
+        const Context own{c.model, c.estimation, c.validation, c.options, exact, fast, c.exact_validation, c.say};
+        results[i] = calibrate_from(own, starts[i].second, at_file, n.free, copt, notes[i]);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  });
   double best_cost = 1e300, worst_cost = 0;
-  for (const auto& [label, s] : starts) {
-    note << " " << label << " -> ";
-    const CalibrationResult r = calibrate_from(c, s, at_file, n.free, copt, note);
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    note << " " << starts[i].first << " -> " << notes[i].str();
+    const CalibrationResult& r = results[i];
     if (!r.ok) continue;
     note << "fit";
     for (double f : r.fit) note << " " << fixed1(f) << " %";

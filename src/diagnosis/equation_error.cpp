@@ -163,19 +163,37 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
   const std::vector<std::string> dz(differentiated.begin(), differentiated.end());
   int combos = 1;
   for (std::size_t i = 0; i < dz.size(); ++i) combos *= 3;
-  std::vector<std::string> state_names;
-  for (const auto& s : model.states) state_names.push_back(s.name);
+  // Where each symbol's value goes, looked up once (the loops below run per sample and parameter).
+  struct Measured {
+    double* at;
+    const Eigen::VectorXd* v;
+    bool is_state;
+  };
+  std::vector<Measured> measured_at;
+  for (const auto& [s, v] : measured) {
+    bool is_state = false;
+    for (const auto& st : model.states) is_state = is_state || st.name == s;
+    measured_at.push_back({&vars[s], &v, is_state});
+  }
+  struct Differentiated {
+    double* at;
+    const Eigen::VectorXd* zhat;
+    double rho;
+  };
+  std::vector<Differentiated> dz_at;
+  for (const auto& z : dz) dz_at.push_back({&vars[z], &zhat[z], rho[z]});
+  double* const t_at = &vars["t"];
+  double* const ts_at = &vars["Ts"];
+  std::vector<double*> parameter_at;
+  for (const auto& p : model.parameters) parameter_at.push_back(&vars[p.name]);
   auto set_sample = [&](int j, int combo) {
     const int j1 = std::min(j + 1, N - 1);
-    vars["t"] = sim.time()[static_cast<std::size_t>(j)] + 0.5 * Ts;
-    vars["Ts"] = Ts;
-    for (const auto& [s, v] : measured) {
-      const bool is_state = std::find(state_names.begin(), state_names.end(), s) != state_names.end();
-      vars[s] = is_state ? 0.5 * (v[j] + v[j1]) : v[j];
-    }
+    *t_at = sim.time()[static_cast<std::size_t>(j)] + 0.5 * Ts;
+    *ts_at = Ts;
+    for (const auto& m : measured_at) *m.at = m.is_state ? 0.5 * ((*m.v)[j] + (*m.v)[j1]) : (*m.v)[j];
     int c = combo;
-    for (const auto& z : dz) {
-      vars[z] = 0.5 * (zhat[z][j] + zhat[z][j1]) + (c % 3 - 1) * rho[z];
+    for (const auto& z : dz_at) {
+      *z.at = 0.5 * ((*z.zhat)[j] + (*z.zhat)[j1]) + (c % 3 - 1) * z.rho;
       c /= 3;
     }
   };
@@ -185,7 +203,7 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
     return p;
   }();
   auto eval = [&](const Eigen::VectorXd& theta) {
-    for (std::size_t i = 0; i < model.parameters.size(); ++i) vars[model.parameters[i].name] = theta[static_cast<Eigen::Index>(i)];
+    for (std::size_t i = 0; i < parameter_at.size(); ++i) *parameter_at[i] = theta[static_cast<Eigen::Index>(i)];
     for (auto& [slot, p] : signals) *slot = p.Eval();
     return f.Eval();
   };

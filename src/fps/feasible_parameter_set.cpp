@@ -417,6 +417,84 @@ std::optional<IntervalVector> strip_box(const FeasibleParameterSet& fps) {
   return box;
 }
 
+// A rigorous box around a set with interval regressors from p of its samples: every theta of
+// the set has A' theta = y for some A' in the samples' interval rows A and y in their output
+// intervals Y_S, so theta lies in the solution set of the interval system A theta = Y_S. With
+// R ~ mid(A)^{-1}, x0 = R mid(Y_S), C = I - R A and Z = R (Y_S - A x0) (interval arithmetic):
+// if every row sum of |C| is <= c < 1, each A' is invertible and x = A'^{-1} y satisfies
+// x - x0 = R (y - A' x0) + (I - R A')(x - x0), so ||x - x0||_inf <= ||Z||_inf / (1 - c) = d and
+// |x - x0| <= |Z| + |C| 1 d componentwise. Loose (about cond(A) times noise plus regressor
+// widths) but a proof: an orthant it misses holds no part of the set. S: as in strip_box.
+std::optional<IntervalVector> interval_system_box(const FeasibleParameterSet& fps) {
+  const int p = fps.dimension();
+  if (fps.size() < p) return std::nullopt;
+  const IntervalMatrix Phi = fps.regressors();
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(midpoint(Phi).transpose());
+  if (qr.rank() < p) return std::nullopt;
+  IntervalMatrix A(p, p);
+  IntervalVector Y(p);
+  for (int k = 0; k < p; ++k) {
+    const Eigen::Index t = qr.colsPermutation().indices()[k];
+    A.row(k) = Phi.row(t);
+    Y[k] = fps.outputs()[t];
+  }
+  const Eigen::MatrixXd R = midpoint(A).fullPivLu().inverse();
+  if (!R.allFinite()) return std::nullopt;
+  const Eigen::VectorXd x0 = R * midpoint(Y);
+  if (!x0.allFinite()) return std::nullopt;
+  const IntervalVector Z = multiply(R, IntervalVector(Y - multiply(A, to_interval(x0))));
+  const IntervalMatrix C = IntervalMatrix(IntervalMatrix::Identity(p, p)) - detail::multiply(to_interval(R), A);
+  const auto mag = [](const Interval& v) { return Interval(std::max(std::abs(v.lower()), std::abs(v.upper()))); };
+  IntervalVector row_sum(p);  // |C| 1, rounded up
+  Interval c(0.0), z(0.0);
+  for (int i = 0; i < p; ++i) {
+    row_sum[i] = Interval(0.0);
+    for (int j = 0; j < p; ++j) row_sum[i] += mag(C(i, j));
+    c = Interval(std::max(c.upper(), row_sum[i].upper()));
+    z = Interval(std::max(z.upper(), mag(Z[i]).upper()));
+  }
+  if (!(c.upper() < 1)) return std::nullopt;
+  const Interval d = z / (Interval(1.0) - c);
+  IntervalVector box(p);
+  for (int l = 0; l < p; ++l) {
+    const double r = (mag(Z[l]) + row_sum[l] * Interval(d.upper())).upper();
+    box[l] = Interval(x0[l]) + Interval(-r, r);
+  }
+  if (!lower(box).allFinite() || !upper(box).allFinite()) return std::nullopt;
+  return box;
+}
+
+// True when the box proves that no point of orthant s lies in it.
+bool box_misses_orthant(const IntervalVector& box, const Orthant& s) {
+  for (std::size_t j = 0; j < s.size(); ++j)
+    if ((s[j] > 0 && box[static_cast<Eigen::Index>(j)].upper() < 0) ||
+        (s[j] < 0 && box[static_cast<Eigen::Index>(j)].lower() > 0))
+      return true;
+  return false;
+}
+
+// The orthants that split the same parameters as `start` (nonzero signs) and that `box`, when
+// given, does not prove empty; nullopt when they are more than 2^16.
+std::optional<std::vector<Orthant>> orthants_to_search(const Orthant& start, const std::optional<IntervalVector>& box) {
+  std::vector<std::size_t> both;  // parameters whose sign the box leaves open
+  Orthant base = start;
+  for (std::size_t j = 0; j < start.size(); ++j) {
+    if (start[j] == 0) continue;
+    const Interval b = box ? (*box)[static_cast<Eigen::Index>(j)] : Interval(-inf, inf);
+    if (b.lower() > 0) base[j] = 1;
+    else if (b.upper() < 0) base[j] = -1;
+    else both.push_back(j);
+  }
+  if (both.size() > 16) return std::nullopt;
+  std::vector<Orthant> out;
+  for (unsigned long mask = 0; mask < (1ul << both.size()); ++mask) {
+    Orthant s = base;
+    for (std::size_t k = 0; k < both.size(); ++k) s[both[k]] = (mask >> k) & 1 ? -1 : 1;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 // Recovery for ends the LPs left infinite (GLPK's "unbounded" on a set that strip_box proves
 // bounded, or an extent that could not be certified): per end, the tighter of the proven box
 // and a safe bound of the LP over it. The box is a true bound of the set, so any multipliers
@@ -594,9 +672,17 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
   } else {
     // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
     // (theta_l = 0), the set may continue into the orthant across that face. An undecided
-    // orthant may touch every face.
+    // orthant may touch every face; a decided one stays off a face only if its certified end
+    // proves it (with `safe`) — the floating-point end is an estimate, its tolerance only adds
+    // visits.
+    // The set need not be connected across faces (one sample with phi in [-1, 1] and
+    // phi theta in [1, 2] keeps theta away from 0 on both sides), so with `safe` every orthant
+    // the search did not reach is then searched too, unless a box proven from p samples
+    // (interval_system_box) misses it: an orthant is skipped only when proven empty.
+    const std::optional<IntervalVector> proven = interval_system_box(fps);
     std::deque<Orthant> queue{sign_orthant(fps, fps.least_squares())};
-    std::set<Orthant> seen{queue.front()};
+    const Orthant start = queue.front();
+    std::set<Orthant> seen{start};
     while (!queue.empty()) {
       Orthant s = queue.front();
       queue.pop_front();
@@ -612,20 +698,27 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
       }
       const double tol = options.zero_tolerance * scale;
       for (int j = 0; j < p; ++j) {
-        if (s[static_cast<std::size_t>(j)] == 0) continue;  // free: no face at theta_j = 0
+        const int sign = s[static_cast<std::size_t>(j)];
+        if (sign == 0) continue;  // free: no face at theta_j = 0
         // An uncertified extent is an estimate: its box reaches the face, so may the set.
-        const bool touches = oc.status == OrthantStatus::unknown || (options.safe && !oc.certified) ||
-                             (s[static_cast<std::size_t>(j)] > 0 ? oc.float_lo[j] <= tol : oc.float_hi[j] >= -tol);
-        if (!touches) continue;
+        // oc.box is the certified box with `safe` (the floating-point extent without).
+        const bool off_face = oc.status == OrthantStatus::feasible && (!options.safe || oc.certified) &&
+                              (sign > 0 ? oc.box[j].lower() > 0 && oc.float_lo[j] > tol
+                                        : oc.box[j].upper() < 0 && oc.float_hi[j] < -tol);
+        if (off_face) continue;
         Orthant next = s;
         next[static_cast<std::size_t>(j)] = -next[static_cast<std::size_t>(j)];
+        if (proven && box_misses_orthant(*proven, next)) continue;  // proven empty
         if (seen.insert(next).second) queue.push_back(next);
       }
     }
-    // A certified-empty starting orthant says nothing about the others: search all of them.
-    if (!have_box) {
-      if (p <= 16) {
-        for (const Orthant& s : all_orthants(p))
+    // A certified-empty starting orthant says nothing about the others, and with `safe` no
+    // orthant is left out unproven: search the rest (the floating-point answer, !safe, keeps
+    // the paper's shortcut).
+    if (!have_box || options.safe) {
+      const std::optional<std::vector<Orthant>> rest = orthants_to_search(start, proven);
+      if (rest) {
+        for (const Orthant& s : *rest)
           if (!seen.count(s)) absorb(s, solve_orthant(fps, s, options, directions));
       } else {
         searched_everywhere = false;
@@ -647,8 +740,8 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
                        " of the parameter space had no feasible point in floating point, but no certificate of "
                        "emptiness could be verified";
     else if (!searched_everywhere)
-      verdict.reason = "the least-squares orthant is empty and the other 2^" + std::to_string(p) +
-                       " orthants were not searched";
+      verdict.reason = "more than 2^16 orthants of the parameter space could hold part of the set and were "
+                       "not searched";
     else
       verdict.reason = "the LPs found parameter values, but none could be proven to satisfy every sample "
                        "(the set may be flat, or empty within rounding)";
@@ -667,7 +760,7 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const PuiOptions& opti
   }
   if (!have_box) result.box = orthant_box({}, p);  // nothing searched could bound the rest
   if (!have_unreliable) result.unreliable_box = result.box;
-  result.guaranteed = options.safe && all_certified;
+  result.guaranteed = options.safe && all_certified && searched_everywhere;
   result.central = midpoint(result.box);
   return result;
 }

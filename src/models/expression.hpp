@@ -42,7 +42,8 @@ struct Checked_expression {
   std::vector<Prev_reference> prevs;  // distinct (x, n) pairs
 };
 
-/// Checks `text` against the grammar above. `is_symbol` says which names the model defines;
+/// Checks `text` against the grammar above. The text for muparser has x^2, x^3 and x^4 of a
+/// symbol x written as products (the optimiser that would do it is off, see compile_expression). `is_symbol` says which names the model defines;
 /// `where` names the file and field for messages ("model.json: derivatives.v").
 Checked_expression check_expression(const std::string& text, const std::function<bool(const std::string&)>& is_symbol,
                                     const std::string& where);

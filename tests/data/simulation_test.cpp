@@ -99,3 +99,24 @@ TEST(Simulation, SampledInputIsHeldOverTheSample) {
   EXPECT_NEAR(x[2], 2.0, 1e-12);
   EXPECT_NEAR(x[3], 1.0, 1e-12);
 }
+
+TEST(Simulation, AnExpressionThatIsOneSymbolIsThatSymbolsValue) {
+  // Such expressions are read from the symbol's slot, not evaluated (a position's derivative `v`):
+  // a state, a parameter, the time and a signal, on polynomials of degree <= 2 that RK4 integrates
+  // exactly.
+  const ModelFile m = parse_model(R"json({"sample_time": 0.25, "parameters": {"a": 3.0},
+    "states": {"x": 0.0, "v": 1.0, "w": 0.0}, "signals": {"z": "v"},
+    "derivatives": {"x": "v", "v": "a", "w": "t"}, "outputs": {"x": "y"}})json", "one_symbol.json");
+  const Simulator s(m, columns(9, 0.0));
+  const SimulationResult r = s.simulate(s.parameter_values());
+  for (int k = 0; k < 9; ++k) {
+    const double t = 0.25 * k;
+    EXPECT_NEAR(r.series("x")[k], t + 1.5 * t * t, 1e-12) << k;
+    EXPECT_NEAR(r.series("v")[k], 1 + 3 * t, 1e-12) << k;
+    EXPECT_NEAR(r.series("w")[k], t * t / 2, 1e-12) << k;
+    EXPECT_EQ(r.series("z")[k], r.series("v")[k]) << k;
+  }
+  Eigen::VectorXd p(1);
+  p << -1.0;  // the parameter's slot is read at each call
+  EXPECT_NEAR(s.simulate(p).series("v")[8], 1 - 2.0, 1e-12);
+}

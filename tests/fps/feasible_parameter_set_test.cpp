@@ -231,6 +231,81 @@ TEST(Pui, RemarkTwoExtendsAcrossZeroBounds) {
   EXPECT_NEAR(r2.box[1].upper(), all.box[1].upper(), 1e-9);
 }
 
+TEST(Pui, RemarkTwoVisitsTheNextOrthantUnlessACertifiedEndProvesTheSetStaysOff) {
+  // theta_0 + eps theta_1 >= 1e-5 with theta_1 in [1, L], L eps = 2e-5: the set crosses
+  // theta_0 = 0 (down to theta_0 = -1e-5 at theta_1 = L), but only along an edge on which
+  // theta_0 falls at the rate eps. GLPK stops minimising theta_0 at the vertex theta_1 = 1
+  // (a reduced cost of eps is below its tolerance): floating-point end ~1e-5, far above the
+  // 1e-9 tolerance, so the old rule never visited theta_0 < 0 and marked a PUI guaranteed
+  // that missed (-5e-6, 0.9 L). The certified end of that piece is 0: the face is reached.
+  for (const double eps : {1e-7, 1e-8}) {
+    const double L = 2e-5 / eps;
+    IntervalMatrix Phi(3, 2);
+    IntervalVector Y(3);
+    Phi(0, 0) = sets::Interval(1.0), Phi(0, 1) = sets::Interval(eps), Y[0] = sets::Interval(1e-5, 1.0);
+    Phi(1, 0) = sets::Interval(0.0), Phi(1, 1) = sets::Interval(1.0), Y[1] = sets::Interval(1.0, L);
+    Phi(2, 0) = sets::Interval(0.5, 0.5000001), Phi(2, 1) = sets::Interval(0.0), Y[2] = sets::Interval(-1.0, 1.0);
+    const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+    const Eigen::Vector2d member(-5e-6, 0.9 * L);
+    ASSERT_EQ(fps.contains(member), sets::BoolInterval::yes);
+    for (const auto solver : {sets::PuiLpSolver::glpk, sets::PuiLpSolver::dense}) {
+      const std::string where = (eps == 1e-7 ? "eps 1e-7" : "eps 1e-8") + std::string(solver == sets::PuiLpSolver::glpk ? ", GLPK" : ", dense");
+      const sets::PuiResult r = sets::pui(fps, {.solver = solver});
+      ASSERT_FALSE(r.empty()) << where;
+      EXPECT_TRUE(sets::contains(r.box, member)) << where << ": theta_0 in [" << r.box[0].lower() << ", "
+                                                  << r.box[0].upper() << "]";
+      EXPECT_GE(r.orthants.size(), 2u) << where;
+    }
+  }
+}
+
+TEST(Pui, RemarkTwoFindsAPieceNotConnectedToTheLeastSquaresOrthant) {
+  // phi in [-1, 1] with phi theta in [1, 2] holds for |theta| >= 1 only: the set is
+  // [-5, -1] u [1, 5], two pieces that touch no face theta = 0. The least-squares estimate is
+  // 0 (sign +); following faces alone gave a guaranteed PUI [1, 5] that missed theta = -3.
+  IntervalMatrix Phi(2, 1);
+  IntervalVector Y(2);
+  Phi(0, 0) = sets::Interval(-1.0, 1.0), Y[0] = sets::Interval(1.0, 2.0);
+  Phi(1, 0) = sets::Interval(1.0), Y[1] = sets::Interval(-5.0, 5.0);
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  ASSERT_EQ(fps.contains(Eigen::VectorXd::Constant(1, -3.0)), sets::BoolInterval::yes);
+  ASSERT_EQ(fps.contains(Eigen::VectorXd::Constant(1, 3.0)), sets::BoolInterval::yes);
+  const sets::PuiResult r = sets::pui(fps);
+  ASSERT_FALSE(r.empty());
+  EXPECT_TRUE(r.guaranteed);
+  EXPECT_LE(r.box[0].lower(), -5.0);
+  EXPECT_GE(r.box[0].upper(), 5.0);
+  EXPECT_EQ(r.orthants.size(), 2u);
+}
+
+TEST(Pui, RemarkTwoSkipsOnlyOrthantsAProvenBoxMisses) {
+  // Narrow regressor intervals and theta far from every face: the box proven from p samples
+  // lies in one orthant, so the other 2^3 - 1 are skipped without an LP, and the PUI is the
+  // one of all orthants.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Eigen::Vector3d theta(0.8, -0.5, 1.2);
+  const int N = 80;
+  IntervalMatrix Phi(N, 3);
+  IntervalVector Y(N);
+  for (int t = 0; t < N; ++t) {
+    Eigen::Vector3d phi(U(rng), U(rng), U(rng));
+    for (int j = 0; j < 3; ++j) Phi(t, j) = sets::interval_around(phi[j], 0.001);
+    Y[t] = sets::interval_around(phi.dot(theta) + 0.01 * U(rng), 0.02);
+  }
+  const auto fps = FeasibleParameterSet::from_interval_data(Phi, Y);
+  const sets::PuiResult r2 = sets::pui(fps);
+  const sets::PuiResult all = sets::pui(fps, {.orthants = sets::OrthantSelection::all});
+  EXPECT_TRUE(r2.guaranteed);
+  EXPECT_EQ(r2.orthants.size(), 1u);
+  EXPECT_EQ(all.orthants.size(), 8u);
+  EXPECT_TRUE(sets::contains(r2.box, theta));
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_EQ(r2.box[j].lower(), all.box[j].lower()) << j;
+    EXPECT_EQ(r2.box[j].upper(), all.box[j].upper()) << j;
+  }
+}
+
 TEST(Pui, SeveralThreadsAtOnceGiveTheSameAnswers) {
   // GLPK is not reentrant across problem objects shared between threads; each PUI call builds
   // its own problems on its own thread, which must be safe.

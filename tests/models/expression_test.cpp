@@ -1,15 +1,19 @@
-// The expression layer (src/models/expression.cpp), through the Simulator: what muparser would
+// The expression layer (src/models/expression.cpp), through the Simulator and directly: what muparser would
 // crash on, or evaluate with undefined behaviour, is an InputError naming the file, field and
 // column; well-formed expressions keep their meaning.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
 #include "sets/models/model_file.hpp"
+#include "models/expression.hpp"
 #include "support/messages.hpp"
 
 using namespace sets;
@@ -110,4 +114,105 @@ TEST(Expression, WellFormedExpressionsKeepTheirMeaning) {
   EXPECT_EQ(first_value("_e"), M_E);
   EXPECT_DOUBLE_EQ(first_value("1.5e1 + .5 + 1."), 16.5);
   EXPECT_DOUBLE_EQ(first_value("x\n+\tu"), 2.0);  // blanks include line breaks and tabs
+}
+
+// ---- x^2, x^3, x^4 of a symbol reach muparser as products (its pow was a quarter of a
+// simulation's time). The values must be pow's within the products' roundings, and exactly pow's
+// on signed zeros, infinities and NaN; every other power stays pow.
+
+namespace {
+
+// `text` over the symbol x, checked and compiled as the simulator does, evaluated at `x`.
+struct Compiled_x {
+  explicit Compiled_x(const std::string& text)
+      : e(check_expression(text, [](const std::string& n) { return n == "x" || n.size() > 50; }, "test")) {
+    compile_expression(parser, e, [&](const std::string& n) { return n == "x" ? &x : &other; });
+  }
+  double operator()(double value) {
+    x = value;
+    return parser.Eval();
+  }
+  Checked_expression e;
+  mu::Parser parser;
+  double x = 0, other = 0;
+};
+
+const std::vector<double>& hostile_values() {
+  static const std::vector<double> v = {0.0, -0.0, 1.0, -1.0, 2.0, -2.0, 1.5, -3.7, 1e-3, -7e5,
+                                        1e-100, -1e-100, 1e70, -1e70, 1e-300, -1e-300,
+                                        std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::max(),
+                                        std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::quiet_NaN()};
+  return v;
+}
+
+// Equal as pow gives it: NaN as NaN, zeros and infinities with their sign, finite values within
+// the products' `roundings` roundings and pow's own (plus the smallest subnormal per rounding
+// where they underflow).
+::testing::AssertionResult same_as_pow(double got, double want, int roundings) {
+  if (std::isnan(want)) return std::isnan(got) ? ::testing::AssertionSuccess() : ::testing::AssertionFailure() << got << " is not NaN";
+  if (want == 0 || std::isinf(want) || got == 0 || std::isinf(got)) {
+    if (got == want && std::signbit(got) == std::signbit(want)) return ::testing::AssertionSuccess();
+    if (std::isfinite(want) && std::isfinite(got) &&
+        std::abs(got - want) <= roundings * std::numeric_limits<double>::denorm_min())
+      return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << got << " is not " << want;
+  }
+  const double tol = (roundings + 1) * std::numeric_limits<double>::epsilon() * std::abs(want) +
+                     roundings * std::numeric_limits<double>::denorm_min();
+  if (std::abs(got - want) <= tol) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << got << " differs from pow's " << want << " by " << std::abs(got - want);
+}
+
+}  // namespace
+
+TEST(Expression, SmallPowersOfASymbolArePowsValuesAsProducts) {
+  struct Case {
+    std::string text;
+    std::string for_muparser;
+    std::function<double(double)> want;
+    int roundings;
+  };
+  const std::vector<Case> cases = {
+      {"x^2", "( x * x )", [](double x) { return std::pow(x, 2); }, 1},
+      {"x^3", "( x * x * x )", [](double x) { return std::pow(x, 3); }, 2},
+      {"x ^ 4.0", "( x * x * x * x )", [](double x) { return std::pow(x, 4); }, 3},
+      {"-x^2", "- ( x * x )", [](double x) { return -std::pow(x, 2); }, 1},  // ^ binds tighter than a sign
+      {"2*-x^3+1", "2 * - ( x * x * x ) + 1", [](double x) { return 2 * -std::pow(x, 3) + 1; }, 4},
+      {"(x^2 < 4) ? x^3 : x", "( ( x * x ) < 4 ) ? ( x * x * x ) : x",
+       [](double x) { return std::pow(x, 2) < 4 ? std::pow(x, 3) : x; }, 2},
+  };
+  for (const auto& c : cases) {
+    Compiled_x f(c.text);
+    EXPECT_EQ(f.e.text, c.for_muparser) << c.text;
+    for (double x : hostile_values()) EXPECT_TRUE(same_as_pow(f(x), c.want(x), c.roundings)) << c.text << " at x = " << x;
+  }
+}
+
+TEST(Expression, OtherPowersStayPow) {
+  // x^0 is 1 even for NaN and x^1 is x: no product is that; negative and fractional exponents,
+  // larger ones, signed or parenthesised exponents, chains (whichever way muparser groups them)
+  // and bases other than one symbol keep muparser's pow.
+  for (const std::string text : {"x^0", "x^1", "x^-2", "x^2.5", "x^5", "x^+2", "x^(2)", "x^2^3", "2^x^2", "(x+1)^2",
+                                 "2^3", "abs(x)^3", "x^x"}) {
+    Compiled_x f(text);
+    EXPECT_NE(f.e.text.find('^'), std::string::npos) << text << " became " << f.e.text;
+  }
+  Compiled_x zeroth("x^0");
+  EXPECT_EQ(zeroth(std::numeric_limits<double>::quiet_NaN()), 1.0);
+  Compiled_x negative("x^-2");
+  EXPECT_EQ(negative(-0.0), std::numeric_limits<double>::infinity());
+}
+
+TEST(Expression, PowersInTextsNearTheLengthLimitStayPowAndStillCompile) {
+  // The products repeat the name: 95 terms of a 99-character name to the fourth power are within
+  // our 10 000 characters but past muparser's 20 000 once written as products.
+  const std::string name = "n" + std::string(98, 'a');
+  std::string text;
+  for (int i = 0; i < 95; ++i) text += (i ? "+" : "") + name + "^4";
+  ASSERT_LE(text.size(), max_expression_length);
+  Compiled_x f(text);
+  EXPECT_NE(f.e.text.find('^'), std::string::npos);
+  f.other = 1.5;
+  EXPECT_DOUBLE_EQ(f.parser.Eval(), 95 * std::pow(1.5, 4));
 }

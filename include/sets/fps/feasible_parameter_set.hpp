@@ -67,7 +67,10 @@ class FeasibleParameterSet {
 };
 
 enum class OrthantSelection {
-  remark2,  // least-squares sign orthant, extended when a bound lands on 0 (Cerone–Regruto)
+  remark2,  // least-squares sign orthant, extended when a bound lands on 0 (Cerone–Regruto); with
+            // `safe`, every other orthant is then searched too unless a box proven from p
+            // samples misses it (the set need not be connected): same PUIs as `all`
+            // (up to LP tolerance), fewer LPs when the set is far from the faces
   all       // every one of the 2^p orthants (only for interval regressors)
 };
 
@@ -81,7 +84,8 @@ enum class PuiLpSolver {
 struct PuiOptions {
   OrthantSelection orthants = OrthantSelection::remark2;
   bool safe = true;           // certify every end with a Neumaier–Shcherbina safe bound
-  double zero_tolerance = 1e-9;  // relative: a bound this close to 0 extends to the next orthant
+  double zero_tolerance = 1e-9;  // relative: a floating-point end this close to 0 also extends the
+                                 // search (with `safe`, a certified end that reaches 0 always does)
   /// Constraint generation: start each orthant LP from a spread subset of the samples and add
   /// the violated ones until none is (same PUIs, much faster for N >> p). Off: every sample.
   bool working_set = true;
