@@ -130,6 +130,11 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
   mu::Parser f;
   compile(f, *f_text);
 
+  // The noise of each differentiated state's measured integral, once for every window (only the
+  // radius of the central difference depends on the window).
+  std::map<std::string, double> sigma_of;
+  for (const auto& z : differentiated) sigma_of[z] = estimate_noise(measured[derivative_of[z]]).sigma;
+
   // One regression per integration window w (samples).
   auto attempt = [&](int w) -> EquationErrorRegression {
   EquationErrorRegression res;
@@ -156,7 +161,7 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
       v[j] = (p[b] - p[a]) / ((b - a) * Ts);
     }
     zhat[z] = v;
-    rho[z] = 3 * estimate_noise(p).sigma / (std::sqrt(2.0) * wv * Ts);
+    rho[z] = 3 * sigma_of[z] / (std::sqrt(2.0) * wv * Ts);
   }
   // Sample interval j (from t_j to t_j+1): held signals at j, states at the interval's midpoint,
   // each differentiated state anywhere in its estimate +- rho (combination `combo`).
@@ -315,15 +320,21 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
     for (Eigen::Index r = 0; r < m; ++r) {
       const int t = rows[static_cast<std::size_t>(r)];
       const int j0 = t - order * w;  // the kernel covers intervals j0 .. t - 1
-      std::vector<Interval> acc(static_cast<std::size_t>(nl + 1), Interval(0.0));
-      Eigen::VectorXd accm = Eigen::VectorXd::Zero(nl + 1);
-      for (int d = 0; d < span; ++d) {
-        const int j = j0 + d;
+      std::vector<Interval> acc(static_cast<std::size_t>(nl + 1));
+      {
+        // One rounding-mode switch for the whole sum instead of a save, set and restore per
+        // operation (every screened hypothesis builds these sums); the bounds are the same.
+        RoundingScope upward;
         for (Eigen::Index k = 0; k <= nl; ++k) {
-          acc[static_cast<std::size_t>(k)] += Interval(K[static_cast<std::size_t>(d)]) * Interval(lo(j, k), hi(j, k));
-          accm[k] += K[static_cast<std::size_t>(d)] * mid(j, k);
+          UnprotectedInterval a(0.0);
+          for (int d = 0; d < span; ++d)
+            a += UnprotectedInterval(K[static_cast<std::size_t>(d)]) * UnprotectedInterval(lo(j0 + d, k), hi(j0 + d, k));
+          acc[static_cast<std::size_t>(k)] = a;
         }
       }
+      Eigen::VectorXd accm = Eigen::VectorXd::Zero(nl + 1);  // round to nearest again
+      for (int d = 0; d < span; ++d)
+        for (Eigen::Index k = 0; k <= nl; ++k) accm[k] += K[static_cast<std::size_t>(d)] * mid(j0 + d, k);
       // theta_c D - sum theta_k I[c_k] = I[c0]  (theta_c = 1 without an inertia parameter).
       Eigen::Index col = 0;
       double e = -accm[nl];
