@@ -6,6 +6,10 @@
 //   ./build/bench/soundness_campaign_bench                       # seeds 1..10000
 //   ./build/bench/soundness_campaign_bench --seeds 1 500 --threads 2 --list-failures
 //   ./build/bench/soundness_campaign_bench --kind badly-scaled --list-failures   # one kind only
+//   ./build/bench/soundness_campaign_bench --kind errors-in-variables --orthants remark2
+//
+// The problems' own options search all orthants for interval regressors; --orthants remark2
+// runs them with the default Remark-2 search instead (it must give the same verdicts).
 //
 // Exit code 1 if any false empty verdict or guaranteed miss occurred (so it can gate a run).
 // A fixed-seed slice runs in the test suite (tests/examples/bounded_error_regression_test.cpp).
@@ -57,10 +61,13 @@ struct Tally {
 };
 
 [[noreturn]] void usage(const char* msg) {
-  std::cerr << "soundness_campaign_bench: " << msg
-            << "\nusage: soundness_campaign_bench [--seeds FIRST LAST] [--threads T] [--kind KIND] [--list-failures]\n"
-            << "  KIND: normal, badly-scaled, near-collinear, errors-in-variables, tiny-n (default: all)\n";
-  std::exit(1);
+  (msg ? std::cerr : std::cout)
+      << (msg ? std::string("soundness_campaign_bench: ") + msg + "\n" : std::string())
+      << "usage: soundness_campaign_bench [--seeds FIRST LAST] [--threads T] [--kind KIND] [--orthants O]\n"
+      << "                                [--list-failures]\n"
+      << "  KIND: normal, badly-scaled, near-collinear, errors-in-variables, tiny-n (default: all)\n"
+      << "  O: as generated (default: all orthants for interval regressors) or remark2\n";
+  std::exit(msg ? 1 : 0);
 }
 
 unsigned long parse_count(const char* s, const char* flag) {
@@ -74,7 +81,7 @@ unsigned long parse_count(const char* s, const char* flag) {
 
 int main(int argc, char** argv) {
   unsigned long first = 1, last = 10000, threads = 1;
-  bool list = false;
+  bool list = false, remark2 = false;
   int kind = -1;  // all kinds
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds") && i + 2 < argc) {
@@ -91,6 +98,12 @@ int main(int argc, char** argv) {
         if (name == want) kind = k;
       }
       if (kind < 0) usage(("--kind: unknown kind '" + want + "'").c_str());
+    } else if (!std::strcmp(argv[i], "--orthants") && i + 1 < argc) {
+      const std::string want = argv[++i];
+      if (want != "remark2" && want != "all") usage(("--orthants: expected remark2 or all, got '" + want + "'").c_str());
+      remark2 = want == "remark2";
+    } else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      usage(nullptr);
     } else if (!std::strcmp(argv[i], "--list-failures")) {
       list = true;
     } else {
@@ -106,7 +119,9 @@ int main(int argc, char** argv) {
   std::atomic<unsigned long> done{0};
   sets::run_worker_threads(static_cast<int>(threads), [&] {
     for (std::size_t i; (i = next++) < seeds.size();) {
-      out[i] = sets::run_soundness_problem(sets::bounded_error_regression(seeds[i]));
+      sets::BoundedErrorRegression problem = sets::bounded_error_regression(seeds[i]);
+      if (remark2) problem.options.orthants = sets::OrthantSelection::remark2;
+      out[i] = sets::run_soundness_problem(problem);
       const unsigned long k = ++done;
       if (k % 1000 == 0) std::cerr << "  " << k << " / " << out.size() << " problems\n";
     }

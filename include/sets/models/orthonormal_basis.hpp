@@ -49,7 +49,7 @@ class OrthonormalBasis {
   double allpass_derivative_bound() const;
   /// beta1 = sum_k M rho^k sup|dF_k/dw|, eq. (12), in closed form (see the method doc).
   double beta1(double M, double rho) const;
-  /// The fronts and the inner factor (for frequency-local bounds, hinf_bound.cpp).
+  /// The fronts and the inner factor (for frequency-local bounds, hinf_bound/error_bound.cpp).
   const std::vector<TransferFunction>& fronts() const { return fronts_; }
   const TransferFunction& allpass() const { return allpass_; }
 
