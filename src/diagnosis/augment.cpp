@@ -4,6 +4,7 @@
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 
@@ -13,8 +14,97 @@
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/numeric/interval.hpp"
 #include "sets/numeric/linear_program.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets::diagnosis_stage {
+
+namespace {
+
+// Starts for the effects' parameters that Levenberg-Marquardt from the search's optimum does not
+// reach: the cost is not convex in a threshold, a sign law's coefficients or a Stribeck velocity.
+// Per chosen effect: its catalogue grid of the nonlinear parameters (data units), the effect
+// switched off (its neutral values), and each of its special cases (fixed roles at their values);
+// every other parameter at the optimum.
+std::vector<Eigen::VectorXd> effect_starts(const ModelFile& m, const std::vector<Candidate>& chosen) {
+  const Eigen::VectorXd p0 = values_of(m);
+  auto index_of = [&](const std::string& name) -> Eigen::Index {
+    for (std::size_t i = 0; i < m.parameters.size(); ++i)
+      if (m.parameters[i].name == name) return static_cast<Eigen::Index>(i);
+    return -1;
+  };
+  std::vector<Eigen::VectorXd> out;
+  auto keep = [&](const Eigen::VectorXd& p) {
+    if (p != p0 && std::find(out.begin(), out.end(), p) == out.end()) out.push_back(p);
+  };
+  for (const Candidate& k : chosen) {
+    for (const auto& g : k.grid) {
+      Eigen::VectorXd p = p0;
+      std::size_t gi = 0;
+      for (std::size_t q = 0; q < k.parameters.size(); ++q)
+        if (!k.linear[q] && gi < g.size())
+          if (const Eigen::Index i = index_of(k.parameters[q]); i >= 0) p[i] = g[gi++];
+      keep(p);
+    }
+    Eigen::VectorXd off = p0;
+    for (std::size_t q = 0; q < k.parameters.size(); ++q)
+      if (const Eigen::Index i = index_of(k.parameters[q]); i >= 0 && !std::isnan(k.neutral[q])) off[i] = k.neutral[q];
+    keep(off);
+    if (const PhysicsEffect* e = find_effect(k.effect))
+      for (const auto& sc : e->special_cases) {
+        Eigen::VectorXd p = p0;
+        for (const auto& [role, value] : sc.fixed)
+          for (std::size_t q = 0; q < k.roles.size(); ++q)
+            if (const Eigen::Index i = index_of(k.parameters[q]); k.roles[q] == role && i >= 0) p[i] = value;
+        keep(p);
+      }
+  }
+  return out;
+}
+
+// The global step: every start of effect_starts costed by one simulation (screening substeps), the
+// best `kCalibrated` calibrated (the search's budget) and refined with the final substeps. Returns
+// the optima that could be computed (final substeps).
+std::vector<CalibrationResult> other_optima(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
+                                            const Simulator& exact, const std::vector<int>& free, const CalibrationOptions& o) {
+  constexpr std::size_t kCalibrated = 2;
+  const Simulator fast(current, c.estimation, {c.options.screening_substeps});
+  std::vector<std::pair<double, Eigen::VectorXd>> costed;
+  for (const auto& p : effect_starts(current, chosen)) {
+    const CalibrationResult e = evaluate(fast, p);
+    if (e.ok && std::isfinite(e.cost)) costed.emplace_back(e.cost, p);
+  }
+  std::stable_sort(costed.begin(), costed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  costed.resize(std::min(costed.size(), kCalibrated));
+  std::vector<CalibrationResult> out(costed.size());
+  CalibrationOptions full = o;
+  full.max_evaluations = 80 * static_cast<int>(free.size() + 1);
+  std::atomic<std::size_t> next{0};
+  run_worker_threads(c.options.threads, [&] {
+    for (std::size_t i; (i = next++) < costed.size();) {
+      try {
+        const CalibrationResult coarse = calibrate(fast, costed[i].second, free, full);
+        if (coarse.ok) out[i] = refine_with_final_substeps(c, exact, coarse.parameters, free, o);
+      } catch (const std::exception&) {
+        out[i] = CalibrationResult();  // a start that cannot be calibrated adds nothing
+      }
+    }
+  });
+  std::vector<CalibrationResult> ok;
+  for (auto& r : out)
+    if (r.ok && std::isfinite(r.cost) && r.outputs.allFinite()) ok.push_back(std::move(r));
+  return ok;
+}
+
+// Is the residual of another optimum inside the bound on the strips' samples? Then it is a point
+// of the same bounded-error set.
+bool inside_bound(const Eigen::MatrixXd& R, const OutputErrorIntervals& oe) {
+  for (Eigen::Index j = 0; j < R.cols(); ++j)
+    for (Eigen::Index i = 0; i < R.rows(); i += oe.stride)
+      if (!(std::abs(R(i, j)) <= oe.delta[static_cast<std::size_t>(j)])) return false;
+  return true;
+}
+
+}  // namespace
 
 void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch& search, Diagnosis& d) {
   if (d.effects.empty()) {
@@ -39,8 +129,18 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const std::vector<int> fr = aug.free_parameters();
   CalibrationOptions o;
   o.scale = scales_for(current, fr, search.known_scales);
-  const auto r = refine_with_final_substeps(c, aug, aug.parameter_values(), fr, o);
-  if (!r.ok) throw NumericalError("the augmented model blows up with the full substeps");
+  const auto from_search = refine_with_final_substeps(c, aug, aug.parameter_values(), fr, o);
+  if (!from_search.ok) throw NumericalError("the augmented model blows up with the full substeps");
+  // The global step over the effects' parameters: the estimate is the best optimum found.
+  std::vector<CalibrationResult> optima = other_optima(c, current, chosen_candidates, aug, fr, o);
+  optima.insert(optima.begin(), from_search);
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < optima.size(); ++k)
+    if (optima[k].cost < optima[best].cost) best = k;
+  const CalibrationResult& r = optima[best];
+  if (best != 0)
+    d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " +
+                    fmt(r.cost) + " against " + fmt(from_search.cost) + " from the search's optimum)";
   store_values(refined, r.parameters);
   d.augmented = current;
   d.fit_augmented_estimation = r.fit;
@@ -54,7 +154,26 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   // the same residuals, sub-sampled and normalised, for the statistical intervals.
   const Eigen::MatrixXd J = output_jacobian(aug, r.parameters, fr, o.scale, r.outputs);
   const Eigen::MatrixXd Ra = Y - r.outputs;
-  const OutputErrorIntervals oe = output_error_intervals(J, Ra, r.parameters, fr, o.scale);
+  OutputErrorIntervals oe = output_error_intervals(J, Ra, r.parameters, fr, o.scale);
+  // Another optimum whose residual stays inside the same bound is a point of the same
+  // bounded-error set, in another component of it: the interval is the hull of the linearised
+  // components around every such point (else it would leave out a parameter value the bound admits).
+  int components = 1;
+  for (std::size_t k = 0; oe.built && k < optima.size(); ++k) {
+    if (k == best || (optima[k].parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
+    const Eigen::MatrixXd Rk = Y - optima[k].outputs;
+    if (!inside_bound(Rk, oe)) continue;
+    try {
+      const Eigen::MatrixXd Jk = output_jacobian(aug, optima[k].parameters, fr, o.scale, optima[k].outputs);
+      const OutputErrorIntervals ok = output_error_intervals(Jk, Rk, optima[k].parameters, fr, o.scale, &oe.delta);
+      if (!ok.built) continue;
+      for (std::size_t i = 0; i < fr.size(); ++i) oe.lo[i] = std::min(oe.lo[i], ok.lo[i]), oe.hi[i] = std::max(oe.hi[i], ok.hi[i]);
+      oe.guaranteed = oe.guaranteed && ok.guaranteed;
+      ++components;
+    } catch (const std::exception&) {
+      // its sensitivities blow up: that component is not added (the note counts the ones that were)
+    }
+  }
   const Eigen::Index stride = oe.stride, m = (N + stride - 1) / stride;
   Eigen::MatrixXd Jw(m * ny, J.cols());
   Eigen::VectorXd rw(m * ny);
@@ -69,6 +188,9 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
       "; PUIs: strips of the output error linearised at the estimate (every " + std::to_string(stride) +
       "th sample), bound per output = 1.5 x the largest |residual| of the augmented model there";
   if (!have_pui) d.bound_note += "; " + oe.note;
+  if (components > 1)
+    d.bound_note += "; " + std::to_string(components) +
+                    " optima of the global step inside the bound: the PUIs are the hull of their linearised components";
   if (have_pui) d.bound_note += oe.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
   // Equation-error PUIs where the effect's equation allows them (linear parameters, measured or
   // differentiable states): much less sensitive to what the model leaves out at high frequency.

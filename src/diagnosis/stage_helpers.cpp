@@ -69,7 +69,7 @@ Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, 
 
 OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
                                             const Eigen::VectorXd& estimate, const std::vector<int>& free,
-                                            const std::vector<double>& scale) {
+                                            const std::vector<double>& scale, const std::vector<double>* given_delta) {
   OutputErrorIntervals out;
   const Eigen::Index N = R.rows(), ny = R.cols();
   out.stride = static_cast<int>(std::max<Eigen::Index>(1, N / 1500));
@@ -79,7 +79,7 @@ OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eige
   for (Eigen::Index j = 0; j < ny; ++j) {
     double delta = 0;
     for (Eigen::Index i = 0; i < m; ++i) delta = std::max(delta, std::abs(R(i * stride, j)));
-    delta = 1.5 * delta + 1e-300;
+    delta = given_delta ? (*given_delta)[static_cast<std::size_t>(j)] : 1.5 * delta + 1e-300;
     out.delta.push_back(delta);
     // Rows in units of the bound and columns in units of each parameter's scale keep the LP
     // well conditioned (position residuals of 1e-6 m next to forces of 1e2 N otherwise).

@@ -73,9 +73,12 @@ struct OutputErrorIntervals {
   int stride = 1;
   std::string note;
 };
+/// `given_delta` (one per output): use these bounds instead (another point of the same
+/// bounded-error set, stage 4's other optima).
 OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
                                             const Eigen::VectorXd& estimate, const std::vector<int>& free,
-                                            const std::vector<double>& scale);
+                                            const std::vector<double>& scale,
+                                            const std::vector<double>* given_delta = nullptr);
 std::string fmt(double x, int prec = 3);
 std::string fixed1(double x);
 
