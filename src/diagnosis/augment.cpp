@@ -62,11 +62,12 @@ std::vector<Eigen::VectorXd> effect_starts(const ModelFile& m, const std::vector
 }
 
 // The global step: every start of effect_starts costed by one simulation (screening substeps), the
-// best `kCalibrated` calibrated (the search's budget) and refined with the final substeps. Returns
+// best `global_step_starts` calibrated (the search's budget) and refined with the final substeps. Returns
 // the optima that could be computed (final substeps).
 std::vector<CalibrationResult> other_optima(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
                                             const Simulator& exact, const std::vector<int>& free, const CalibrationOptions& o) {
-  constexpr std::size_t kCalibrated = 2;
+  const auto calibrated = static_cast<std::size_t>(std::max(0, c.options.global_step_starts));
+  if (calibrated == 0) return {};
   const Simulator fast(current, c.estimation, {c.options.screening_substeps});
   std::vector<std::pair<double, Eigen::VectorXd>> costed;
   for (const auto& p : effect_starts(current, chosen)) {
@@ -74,7 +75,7 @@ std::vector<CalibrationResult> other_optima(const Context& c, const ModelFile& c
     if (e.ok && std::isfinite(e.cost)) costed.emplace_back(e.cost, p);
   }
   std::stable_sort(costed.begin(), costed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  costed.resize(std::min(costed.size(), kCalibrated));
+  costed.resize(std::min(costed.size(), calibrated));
   std::vector<CalibrationResult> out(costed.size());
   CalibrationOptions full = o;
   full.max_evaluations = 80 * static_cast<int>(free.size() + 1);

@@ -1,11 +1,14 @@
 // The augment stage of the diagnosis (src/diagnosis/augment.cpp) on the Coulomb-friction plant: the
 // augmented model fits better than the nominal on both records, the friction level's bounded-error
 // interval holds the plant's true value (0.3) and its estimate, and its parts (output error,
-// statistical) are ordered.
+// statistical) are ordered; and the global step over the effects' parameters on a plant whose
+// search stops in a local optimum.
 
 #include <gtest/gtest.h>
 
 #include "sets/diagnosis/residual_tests.hpp"
+#include "sets/examples/diagnosis_suite.hpp"
+#include "sets/examples/random_plants.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "support/diagnosis_stages.hpp"
 
@@ -46,4 +49,28 @@ TEST(Augment, CoulombPlantFitsBetterAndTheIntervalHoldsTheTrueFrictionLevel) {
   // with the equation-error one).
   EXPECT_GE(fc.lo, fc.oe_lo);
   EXPECT_LE(fc.hi, fc.oe_hi);
+}
+
+// The global step over the effects' parameters (augment.cpp), on development plant 800 015
+// (Coulomb friction in the force balance and a dead zone on the drive, two threshold laws that
+// trade off): the search stops in a local optimum where the output-error PUIs, linearised there
+// and the only intervals (no equation-error PUI on this plant), leave out both true values. With
+// the step the true values are inside; without it (global_step_starts = 0) they are not.
+TEST(Augment, GlobalStepOverTheEffectsParametersPutsTheTrueValuesInsideTheIntervals) {
+  const SyntheticPlant p = random_plant(800015);
+  auto run = [&](int starts) {
+    DiagnosisOptions o;
+    o.threads = 1;  // as the suite runs each plant
+    o.global_step_starts = starts;
+    return run_suite_plant(p, o);
+  };
+  const SuitePlantResult without = run(0), with = run(2);
+  ASSERT_TRUE(without.error.empty()) << without.error;
+  ASSERT_TRUE(with.error.empty()) << with.error;
+  ASSERT_EQ(with.coverage.size(), 2u);
+  int outside_without = 0;
+  for (const auto& c : without.coverage) outside_without += !c.inside;
+  EXPECT_GT(outside_without, 0) << "the plant no longer shows the local optimum this test is about";
+  for (const auto& c : with.coverage)
+    EXPECT_TRUE(c.inside) << c.effect << " " << c.role << ": true " << c.truth << " not in [" << c.lo << ", " << c.hi << "]";
 }
