@@ -92,15 +92,24 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  // Same checks as add_strip, one allocation. Column by column (Phi is column-major); only when
-  // an entry is not finite is it scanned again row by row, to name the first such sample.
-  bool finite = true;
-  for (Eigen::Index j = 0; j < Phi.cols(); ++j)
+  // Same checks as add_strip and the magnitudes track_magnitudes keeps, in one pass column by
+  // column (Phi is column-major) with local accumulators; only when an entry is not finite is Phi
+  // scanned again row by row, to name the first such sample.
+  bool finite = true, eiv = false;
+  for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+    double largest = f.col_largest_[j], smallest = f.col_smallest_[j];
     for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
       const double lo = Phi(t, j).lower(), hi = Phi(t, j).upper();
-      finite = finite && std::isfinite(lo) && std::isfinite(hi);
-      f.eiv_ = f.eiv_ || lo != hi;
+      finite = finite & std::isfinite(lo) & std::isfinite(hi);
+      eiv = eiv | (lo != hi);
+      const double a = std::abs(lo), b = std::abs(hi);
+      largest = std::max(largest, std::max(a, b));
+      if (a > 0) smallest = std::min(smallest, a);
+      if (b > 0) smallest = std::min(smallest, b);
     }
+    f.col_largest_[j] = largest;
+    f.col_smallest_[j] = smallest;
+  }
   for (Eigen::Index t = 0; t < Y.size(); ++t) finite = finite && std::isfinite(Y[t].lower()) && std::isfinite(Y[t].upper());
   for (Eigen::Index t = 0; t < Phi.rows() && !finite; ++t) {
     const auto where = [t] { return "FeasibleParameterSet: sample " + std::to_string(t); };
@@ -110,15 +119,10 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     if (!std::isfinite(Y[t].lower()) || !std::isfinite(Y[t].upper()))
       throw InputError(where() + ", output bound is not finite");
   }
+  f.eiv_ = eiv;
   f.Phi_ = Phi;
   f.Y_ = Y;
   f.n_ = Phi.rows();
-  for (Eigen::Index j = 0; j < Phi.cols(); ++j)  // track_magnitudes of every row, column by column
-    for (Eigen::Index t = 0; t < Phi.rows(); ++t)
-      for (double a : {std::abs(Phi(t, j).lower()), std::abs(Phi(t, j).upper())}) {
-        f.col_largest_[j] = std::max(f.col_largest_[j], a);
-        if (a > 0) f.col_smallest_[j] = std::min(f.col_smallest_[j], a);
-      }
   return f;
 }
 
