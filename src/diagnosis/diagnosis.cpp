@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -62,11 +63,15 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // made under it and the augmented model file records it.
   const ModelFile model = with_intersample(model_file, options.intersample);
   const auto t_start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  // Each line says the wall time and the process's CPU time (all threads) since the start, so
+  // the split per stage can be read on a loaded machine too.
   auto say = [&](const std::string& s) {
     if (!options.progress) return;
     std::ostringstream os;
     os << std::fixed << std::setprecision(1)
-       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count() << " s: " << s;
+       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count() << " s (CPU "
+       << static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC << " s): " << s;
     options.progress(os.str());
   };
   Diagnosis d;
@@ -99,6 +104,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   d.noise_sigma = noise.sigma;
   for (const auto& n : d.noise)
     d.noise_note += (d.noise_note.empty() ? "" : "; ") + n.output + ": " + noise_method_name(n.estimate.method);
+  say("testing the calibrated nominal's residual (falsification, whiteness, independence)");
   d.nominal_tests = test_residual(exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
   test_data_hypothesis(c, nominal, noise, d);                                   // about the data, not physics
   locate_mismatch(c, nominal, noise, d);                                        // 2.
@@ -111,6 +117,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
     d.final_tests = test_residual(aug, p, aug.simulate(p), noise.sigma);
   }
   conclude(d);
+  say("done");
 
   d.time_estimation = Eigen::Map<const Eigen::VectorXd>(exact.time().data(), exact.samples());
   d.measured_estimation = exact.measured();

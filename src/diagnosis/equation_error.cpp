@@ -33,8 +33,25 @@ std::string trimmed(const std::string& s) { return boost::algorithm::trim_copy_i
 
 }  // namespace
 
+namespace {
+
+Eigen::VectorXd column_of(const Recording& data, const std::string& c) {
+  const auto& v = data.column(c);
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())).eval();
+}
+
+}  // namespace
+
+ColumnNoise measured_noise(const ModelFile& model, const Recording& data) {
+  ColumnNoise out;
+  for (const auto& [sym, col] : model.outputs)
+    if (!out.count(col)) out[col] = estimate_noise(column_of(data, col)).sigma;
+  return out;
+}
+
 std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile& model, const Recording& data,
-                                                               const std::string& state, const std::vector<int>& windows) {
+                                                               const std::string& state, const std::vector<int>& windows,
+                                                               const ColumnNoise* noise) {
   std::vector<EquationErrorRegression> out;
   auto fail = [&](const std::string& why) {
     EquationErrorRegression res;
@@ -49,17 +66,15 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
 
   // Measured symbols: inputs, and every model symbol compared with a column.
   std::map<std::string, Eigen::VectorXd> measured;
-  auto column = [&](const std::string& c) {
-    const auto& v = data.column(c);
-    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())).eval();
-  };
+  auto column = [&](const std::string& c) { return column_of(data, c); };
   for (const auto& [sym, col] : model.inputs) {
     // An input that is not held enters each interval at its midpoint value (the midpoint rule, as the states).
     const Intersample mode = declared_intersample(model, sym);
     const std::vector<double> mid = input_between_samples(data.column(col), mode, 0.5);
     measured[sym] = Eigen::Map<const Eigen::VectorXd>(mid.data(), static_cast<Eigen::Index>(mid.size()));
   }
-  for (const auto& [sym, col] : model.outputs) measured[sym] = column(col);
+  std::map<std::string, std::string> column_name;  // measured output symbol -> its column
+  for (const auto& [sym, col] : model.outputs) measured[sym] = column(col), column_name[sym] = col;
   // Unmeasured states that are the derivative of a measured one (q' = v, q measured): estimated by
   // a central difference over +-wv samples, with a noise radius rho (3 sigma of that estimate).
   std::map<std::string, std::string> derivative_of;  // z -> measured p with p' = z
@@ -131,9 +146,12 @@ std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile&
   compile(f, *f_text);
 
   // The noise of each differentiated state's measured integral, once for every window (only the
-  // radius of the central difference depends on the window).
+  // radius of the central difference depends on the window), or the caller's for its column.
   std::map<std::string, double> sigma_of;
-  for (const auto& z : differentiated) sigma_of[z] = estimate_noise(measured[derivative_of[z]]).sigma;
+  for (const auto& z : differentiated) {
+    const auto known = noise ? noise->find(column_name[derivative_of[z]]) : ColumnNoise::const_iterator();
+    sigma_of[z] = noise && known != noise->end() ? known->second : estimate_noise(measured[derivative_of[z]]).sigma;
+  }
 
   // One regression per integration window w (samples).
   auto attempt = [&](int w) -> EquationErrorRegression {
@@ -465,10 +483,11 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
   return res;
 }
 
-EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window) {
+EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window,
+                                    const ColumnNoise* noise) {
   EquationErrorFit fit;
   const int w = window > 0 ? window : std::clamp(data.rows() / 200, 4, 500);
-  const EquationErrorRegression g = equation_error_regressions(model, data, state, {w}).front();
+  const EquationErrorRegression g = equation_error_regressions(model, data, state, {w}, noise).front();
   fit.note = g.note;
   if (!g.built) return fit;
   // Least squares in scaled unknowns; a homogeneous regression (nothing known on the right, an

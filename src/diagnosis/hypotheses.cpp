@@ -388,6 +388,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     std::vector<ToRefine> to_refine{{&null, {values_of(h.current)}}};
     for (const auto* l : list) to_refine.push_back({&l->candidate, l->starts});
     std::vector<Trial> trials = refine(c, to_refine, h.known_scales);
+    c.say("  refined; judging them by the acceptance rules");
     for (std::size_t i = 1; i < trials.size(); ++i) trials[i].screening_gain = list[i - 1]->gain;
     d.hypotheses_refined += static_cast<int>(list.size());
     double cost_cur = 1e300, cost_cur_val = kNaN;

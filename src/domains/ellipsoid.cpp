@@ -192,14 +192,28 @@ std::optional<Ellipsoid> slice(const Ellipsoid& E, const std::vector<int>& coord
     w[i] = fixed[i] - E.center()[other[i]];
     for (Eigen::Index j = 0; j < f; ++j) Pff(i, j) = E.shape()(other[i], other[j]);
   }
-  const Eigen::MatrixXd Pffi = pseudo_inverse(Pff);
+  // P_FF^+ w and P_FF^+ P_KF^T. By Cholesky when P_FF is safely positive definite: its estimated
+  // reciprocal condition number above 1e-10, a margin of 100 over the cut-off of pseudo_inverse
+  // (1e-12), which then cuts nothing and is the inverse; the eigen-decomposition was most of the
+  // cost of a slice. Otherwise (flat or nearly flat) the pseudo-inverse.
+  Eigen::VectorXd Pffi_w;
+  Eigen::MatrixXd Pffi_Pfk;
+  const Eigen::LLT<Eigen::MatrixXd> llt(Pff);
+  if (f > 0 && llt.info() == Eigen::Success && llt.rcond() > 1e-10) {
+    Pffi_w = llt.solve(w);
+    Pffi_Pfk = llt.solve(Pkf.transpose());
+  } else {
+    const Eigen::MatrixXd Pffi = pseudo_inverse(Pff);
+    Pffi_w = Pffi * w;
+    Pffi_Pfk = Pffi * Pkf.transpose();
+  }
   // Off range(P_FF): the fixed values leave the (flat) ellipsoid's affine hull.
   const double scale = std::max(1.0, w.norm());
-  if (f > 0 && (Pff * (Pffi * w) - w).norm() > 1e-9 * scale) return std::nullopt;
-  const double kappa = 1.0 - w.dot(Pffi * w);
+  if (f > 0 && (Pff * Pffi_w - w).norm() > 1e-9 * scale) return std::nullopt;
+  const double kappa = 1.0 - w.dot(Pffi_w);
   if (kappa < -1e-12) return std::nullopt;
-  const Eigen::VectorXd c = ck + Pkf * (Pffi * w);
-  Eigen::MatrixXd S = Pkk - Pkf * Pffi * Pkf.transpose();
+  const Eigen::VectorXd c = ck + Pkf * Pffi_w;
+  Eigen::MatrixXd S = Pkk - Pkf * Pffi_Pfk;
   S = (0.5 * (S + S.transpose())).eval();
   // Rounding can leave tiny negative eigenvalues in the Schur complement: clip them.
   if (k > 0) {

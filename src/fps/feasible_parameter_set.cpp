@@ -92,21 +92,37 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     throw InputError("FeasibleParameterSet: " + std::to_string(Phi.rows()) + " samples for " +
                      std::to_string(Phi.cols()) + " parameters: need at least as many samples as parameters");
   FeasibleParameterSet f(static_cast<int>(Phi.cols()));
-  // Same checks as add_strip, one allocation.
-  for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+  // Same checks as add_strip and the magnitudes track_magnitudes keeps, in one pass column by
+  // column (Phi is column-major) with local accumulators; only when an entry is not finite is Phi
+  // scanned again row by row, to name the first such sample.
+  bool finite = true, eiv = false;
+  for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+    double largest = f.col_largest_[j], smallest = f.col_smallest_[j];
+    for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
+      const double lo = Phi(t, j).lower(), hi = Phi(t, j).upper();
+      finite = finite & std::isfinite(lo) & std::isfinite(hi);
+      eiv = eiv | (lo != hi);
+      const double a = std::abs(lo), b = std::abs(hi);
+      largest = std::max(largest, std::max(a, b));
+      if (a > 0) smallest = std::min(smallest, a);
+      if (b > 0) smallest = std::min(smallest, b);
+    }
+    f.col_largest_[j] = largest;
+    f.col_smallest_[j] = smallest;
+  }
+  for (Eigen::Index t = 0; t < Y.size(); ++t) finite = finite && std::isfinite(Y[t].lower()) && std::isfinite(Y[t].upper());
+  for (Eigen::Index t = 0; t < Phi.rows() && !finite; ++t) {
     const auto where = [t] { return "FeasibleParameterSet: sample " + std::to_string(t); };
-    for (Eigen::Index j = 0; j < Phi.cols(); ++j) {
+    for (Eigen::Index j = 0; j < Phi.cols(); ++j)
       if (!std::isfinite(Phi(t, j).lower()) || !std::isfinite(Phi(t, j).upper()))
         throw InputError(where() + ", regressor entry " + std::to_string(j) + " is not finite");
-      if (Phi(t, j).lower() != Phi(t, j).upper()) f.eiv_ = true;
-    }
     if (!std::isfinite(Y[t].lower()) || !std::isfinite(Y[t].upper()))
       throw InputError(where() + ", output bound is not finite");
   }
+  f.eiv_ = eiv;
   f.Phi_ = Phi;
   f.Y_ = Y;
   f.n_ = Phi.rows();
-  for (Eigen::Index t = 0; t < Phi.rows(); ++t) f.track_magnitudes(t);
   return f;
 }
 
@@ -143,23 +159,35 @@ void FeasibleParameterSet::add_strip(const IntervalVector& Phi, const Interval& 
 
 BoolInterval FeasibleParameterSet::contains(const Eigen::Ref<const Eigen::VectorXd>& theta) const {
   if (theta.size() != p_) throw InputError("FeasibleParameterSet::contains: wrong dimension");
-  BoolInterval result = BoolInterval::yes;
-  // Pure interval work: one rounding-mode switch for the whole loop (it was one per operation,
-  // about 90 % of the time of this function).
-  using I = UnprotectedInterval;
-  RoundingScope upward;
-  for (Eigen::Index t = 0; t < n_; ++t) {
-    // The range of phi^T theta over the regressor box is [lo_true, hi_true]; L and U enclose them.
-    I L(0.0), U(0.0);
+  // The range of phi_t^T theta over the regressor box is [lo_t, hi_t], lo_t = sum_j of the
+  // smaller of the ends' products with theta_j, hi_t the larger. Enclosures [L_t, L'_t] of lo_t
+  // and [U'_t, U_t] of hi_t are summed column by column (Phi_ is column-major; reading it row by
+  // row missed the cache on every entry), all in one upward rounding scope: a product or sum
+  // rounded up is x * y or x + y, rounded down -((-x) * y) or -((-x) - y). These are the ends
+  // Boost's interval operations give (up to the sign of a zero), without their case analysis;
+  // which end of Phi_tj gives the smaller product depends only on the sign of theta_j, so it is
+  // chosen once per column.
+  Eigen::ArrayXd lo_down = Eigen::ArrayXd::Zero(n_), lo_up = lo_down, hi_down = lo_down, hi_up = lo_down;
+  {
+    RoundingScope upward;
     for (int j = 0; j < p_; ++j) {
-      const I a = Phi_(t, j).lower() * I(theta[j]);
-      const I b = Phi_(t, j).upper() * I(theta[j]);
-      const bool pos = theta[j] >= 0;
-      L += pos ? a : b;
-      U += pos ? b : a;
+      const double th = theta[j];
+      const bool pos = th >= 0;
+      const Interval* column = Phi_.data() + static_cast<Eigen::Index>(j) * Phi_.rows();
+      for (Eigen::Index t = 0; t < n_; ++t) {
+        const double small = pos ? column[t].lower() : column[t].upper();  // the end giving the smaller product
+        const double large = pos ? column[t].upper() : column[t].lower();
+        lo_down[t] = -((-lo_down[t]) + (-small) * th);
+        lo_up[t] = lo_up[t] + small * th;
+        hi_down[t] = -((-hi_down[t]) + (-large) * th);
+        hi_up[t] = hi_up[t] + large * th;
+      }
     }
-    if (L.lower() > Y_[t].upper() || U.upper() < Y_[t].lower()) return BoolInterval::no;
-    if (!(L.upper() <= Y_[t].upper() && U.lower() >= Y_[t].lower())) result = BoolInterval::unknown;
+  }
+  BoolInterval result = BoolInterval::yes;
+  for (Eigen::Index t = 0; t < n_; ++t) {
+    if (lo_down[t] > Y_[t].upper() || hi_up[t] < Y_[t].lower()) return BoolInterval::no;
+    if (!(lo_up[t] <= Y_[t].upper() && hi_down[t] >= Y_[t].lower())) result = BoolInterval::unknown;
   }
   return result;
 }

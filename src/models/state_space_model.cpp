@@ -12,10 +12,17 @@ Eigen::MatrixXd simulate(const StateSpaceModel& m, const Eigen::Ref<const Eigen:
     throw InputError("simulate: dimensions of A, B, C, D, u and x0 do not match");
   Eigen::VectorXd x = x0.size() ? x0 : Eigen::VectorXd::Zero(n);
   Eigen::MatrixXd y(u.rows(), m.C.rows());
+  // The same products and sums as y(t) = C x + D u(t), x = A x + B u(t), in vectors allocated
+  // once (a simulation of 1 000 samples made 6 000 allocations).
+  Eigen::VectorXd ut(u.cols()), cx(m.C.rows()), du(m.C.rows()), ax(n), bu(n);
   for (int t = 0; t < u.rows(); ++t) {
-    const Eigen::VectorXd ut = u.row(t).transpose();
-    y.row(t) = (m.C * x + m.D * ut).transpose();
-    x = m.A * x + m.B * ut;
+    ut = u.row(t).transpose();
+    cx.noalias() = m.C * x;
+    du.noalias() = m.D * ut;
+    y.row(t) = (cx + du).transpose();
+    ax.noalias() = m.A * x;
+    bu.noalias() = m.B * ut;
+    x = ax + bu;
   }
   return y;
 }

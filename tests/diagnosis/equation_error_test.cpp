@@ -46,3 +46,40 @@ TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
   EXPECT_FALSE(rd.built);
   EXPECT_NE(rd.note.find("prev"), std::string::npos) << rd.note;
 }
+
+// The noise of the differentiated column estimated once by the caller (measured_noise) gives the
+// same regression as estimating it inside; a caller's value is used (a tenfold noise changes the
+// interval regressors), so the cache can neither be ignored nor disagree unnoticed.
+TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
+  const SyntheticPlant p = synthetic_plant("coulomb_friction");
+  ModelFile m = p.nominal;
+  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
+  ModelParameter fc;
+  fc.name = "Fc";
+  m.parameters.push_back(fc);
+  const int w = 20;
+  const ColumnNoise noise = measured_noise(m, p.estimation);
+  ASSERT_EQ(noise.size(), m.outputs.size());
+  const EquationErrorRegression inside = equation_error_regressions(m, p.estimation, "v", {w}).front();
+  const EquationErrorRegression passed = equation_error_regressions(m, p.estimation, "v", {w}, &noise).front();
+  ASSERT_TRUE(inside.built) << inside.note;
+  ASSERT_TRUE(passed.built) << passed.note;
+  ASSERT_EQ(inside.Phi.rows(), passed.Phi.rows());
+  ASSERT_EQ(inside.Phi.cols(), passed.Phi.cols());
+  int differ = 0;
+  ColumnNoise louder = noise;
+  for (auto& [column, sigma] : louder) sigma *= 10;
+  const EquationErrorRegression loud = equation_error_regressions(m, p.estimation, "v", {w}, &louder).front();
+  ASSERT_TRUE(loud.built) << loud.note;
+  for (Eigen::Index i = 0; i < inside.Phi.rows(); ++i)
+    for (Eigen::Index j = 0; j < inside.Phi.cols(); ++j) {
+      ASSERT_EQ(inside.Phi(i, j).lower(), passed.Phi(i, j).lower());
+      ASSERT_EQ(inside.Phi(i, j).upper(), passed.Phi(i, j).upper());
+      differ += loud.Phi(i, j).lower() != inside.Phi(i, j).lower() || loud.Phi(i, j).upper() != inside.Phi(i, j).upper();
+    }
+  EXPECT_GT(differ, 0);
+  const EquationErrorFit a = equation_error_fit(m, p.estimation, "v"), b = equation_error_fit(m, p.estimation, "v", 0, &noise);
+  ASSERT_TRUE(a.built && b.built);
+  EXPECT_EQ(a.estimate, b.estimate);
+  EXPECT_EQ(a.relative_residual, b.relative_residual);
+}

@@ -573,6 +573,20 @@ RC_GTEST_PROP(FeasibleParameterSet, ContainsAgreesWithExactArithmetic, ()) {
   const sets::BoolInterval v = fps.contains(theta);
   if (member) RC_ASSERT(v != sets::BoolInterval::no);
   if (!member) RC_ASSERT(v != sets::BoolInterval::yes);
+  // The same verdict as Boost's interval operations row by row (contains() sums the same ends
+  // column by column in one rounding scope): no undecided point where intervals decide.
+  sets::BoolInterval reference = sets::BoolInterval::yes;
+  for (int t = 0; t < N && reference != sets::BoolInterval::no; ++t) {
+    sets::Interval lo(0.0), hi(0.0);
+    for (int j = 0; j < p; ++j) {
+      const sets::Interval a = Phi(t, j).lower() * sets::Interval(theta[j]), b = Phi(t, j).upper() * sets::Interval(theta[j]);
+      lo += theta[j] >= 0 ? a : b;
+      hi += theta[j] >= 0 ? b : a;
+    }
+    if (lo.lower() > Y[t].upper() || hi.upper() < Y[t].lower()) reference = sets::BoolInterval::no;
+    else if (!(lo.upper() <= Y[t].upper() && hi.lower() >= Y[t].lower())) reference = sets::BoolInterval::unknown;
+  }
+  RC_ASSERT(static_cast<int>(v) == static_cast<int>(reference));
 }
 
 // ---------------------------------------------------------------- dense simplex versus GLPK

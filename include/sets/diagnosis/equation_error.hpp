@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,15 @@ struct EquationErrorResult {
   int rows = 0, window = 0, order = 0;  // strips, window (samples), 1 or 2 integrations
 };
 
+/// The noise level (standard deviation, column units) of measured columns, by column name. The
+/// noise of a column is a property of the data alone (sets/data/noise_level.hpp, estimated from
+/// the column without a model), so a caller that builds many regressions on the same recording
+/// (screening: one per hypothesis) estimates it once and passes it in; the results are the same.
+using ColumnNoise = std::map<std::string, double>;
+/// The noise level of every output column of `model` in `data` (the columns a regression may
+/// differentiate), each estimated once.
+ColumnNoise measured_noise(const ModelFile& model, const Recording& data);
+
 /// The regression of one window: theta (the free parameters acting on the equation, the inertia
 /// first when there is one) satisfies Phi theta in Y + [-delta, delta] at every strip when the
 /// integrated equation error is below delta. Phi_mid, Y_mid: the central values (estimates of the
@@ -51,8 +61,11 @@ struct EquationErrorRegression {
   int rows = 0, window = 0, order = 0;
 };
 /// One regression per window (samples). Never throws for a model it cannot handle.
+/// `noise`: the columns' noise levels when the caller has them (a column missing from it, or
+/// nullptr: estimated here).
 std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile& model, const Recording& data,
-                                                               const std::string& state, const std::vector<int>& windows);
+                                                               const std::string& state, const std::vector<int>& windows,
+                                                               const ColumnNoise* noise = nullptr);
 /// The windows tried by default: N/500 .. N/25 samples within [4, 500], N >= 8 w.
 std::vector<int> equation_error_windows(int samples);
 
@@ -65,7 +78,8 @@ struct EquationErrorFit {
   std::vector<double> estimate;
   double relative_residual = 1;  // ||Y - Phi theta|| / ||Y - mean Y|| (0: exact)
 };
-EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window = 0);
+EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window = 0,
+                                    const ColumnNoise* noise = nullptr);
 
 /// PUIs of the free parameters of the equation of `state`, with the model's parameter values as
 /// the estimate the bound is measured at. Never throws for a model it cannot handle: `built` is

@@ -129,12 +129,11 @@ LevelSetDomain level_set_from(const CanonicalRegression& r, const Eigen::VectorX
 
 LevelSetDomain level_set_domain(const CanonicalRegression& r, const LevelSetOptions& o) {
   const int m = static_cast<int>(r.Psi.cols());
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(r.Psi);
-  qr.setThreshold(least_squares_rank_threshold);
-  if (qr.rank() < m)
-    throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(qr.rank()) + " < " +
+  const RegressionLeastSquares ls = regression_least_squares(r);  // as identify_propagator
+  if (ls.rank < m)
+    throw InputError("level_set_domain: Psi^T Psi is singular (rank " + std::to_string(ls.rank) + " < " +
                      std::to_string(m) + "); the parameters are not identifiable");
-  return level_set_from(r, qr.solve(r.y), o);
+  return level_set_from(r, ls.theta, o);
 }
 
 LevelSetDomain level_set_domain(const PropagatorResult& id, const LevelSetOptions& o) {

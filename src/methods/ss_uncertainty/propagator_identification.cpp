@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <sstream>
 
@@ -285,15 +286,80 @@ CanonicalRegression canonical_regression(const CanonicalStructure& st, const Eig
   return r;
 }
 
+namespace {
+
+// The equation of every column of Psi (the equation of its nonzero rows); nullopt when a column
+// is zero or has nonzero rows in two equations (not a regression canonical_regression builds).
+std::optional<std::vector<int>> column_equations(const CanonicalRegression& reg) {
+  if (static_cast<Eigen::Index>(reg.equation.size()) != reg.Psi.rows() || reg.y.size() != reg.Psi.rows())
+    return std::nullopt;
+  for (const int e : reg.equation)
+    if (e < 0 || e >= reg.equations) return std::nullopt;
+  std::vector<int> eq_of(static_cast<std::size_t>(reg.Psi.cols()), -1);
+  for (Eigen::Index j = 0; j < reg.Psi.cols(); ++j) {
+    int& e = eq_of[static_cast<std::size_t>(j)];
+    for (Eigen::Index row = 0; row < reg.Psi.rows(); ++row) {
+      if (reg.Psi(row, j) == 0) continue;
+      const int here = reg.equation[static_cast<std::size_t>(row)];
+      if (e >= 0 && e != here) return std::nullopt;
+      e = here;
+    }
+    if (e < 0) return std::nullopt;
+  }
+  return eq_of;
+}
+
+}  // namespace
+
+RegressionLeastSquares regression_least_squares(const CanonicalRegression& reg) {
+  RegressionLeastSquares out;
+  const Eigen::Index m = reg.Psi.cols();
+  const std::optional<std::vector<int>> eq_of = column_equations(reg);
+  if (!eq_of) {  // one QR of the whole Psi
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(reg.Psi);
+    qr.setThreshold(least_squares_rank_threshold);
+    out.rank = static_cast<int>(qr.rank());
+    if (out.rank == m) out.theta = qr.solve(reg.y);
+    return out;
+  }
+  out.theta = Eigen::VectorXd::Zero(m);
+  std::vector<double> pivots;
+  double max_pivot = 0;
+  for (int e = 0; e < reg.equations; ++e) {
+    std::vector<Eigen::Index> cols, rows;
+    for (Eigen::Index j = 0; j < m; ++j)
+      if ((*eq_of)[static_cast<std::size_t>(j)] == e) cols.push_back(j);
+    if (cols.empty()) continue;
+    for (Eigen::Index row = 0; row < reg.Psi.rows(); ++row)
+      if (reg.equation[static_cast<std::size_t>(row)] == e) rows.push_back(row);
+    const auto n_rows = static_cast<Eigen::Index>(rows.size()), n_cols = static_cast<Eigen::Index>(cols.size());
+    Eigen::MatrixXd A(n_rows, n_cols);
+    Eigen::VectorXd b(n_rows);
+    for (Eigen::Index q = 0; q < n_cols; ++q)
+      for (Eigen::Index k = 0; k < n_rows; ++k) A(k, q) = reg.Psi(rows[static_cast<std::size_t>(k)], cols[static_cast<std::size_t>(q)]);
+    for (Eigen::Index k = 0; k < n_rows; ++k) b[k] = reg.y[rows[static_cast<std::size_t>(k)]];
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+    qr.setThreshold(least_squares_rank_threshold);
+    max_pivot = std::max(max_pivot, qr.maxPivot());
+    for (Eigen::Index i = 0; i < std::min(n_rows, n_cols); ++i) pivots.push_back(std::abs(qr.matrixQR()(i, i)));
+    if (n_rows < n_cols) continue;  // rank deficient: counted below
+    const Eigen::VectorXd part = qr.solve(b);
+    for (Eigen::Index q = 0; q < n_cols; ++q) out.theta[cols[static_cast<std::size_t>(q)]] = part[q];
+  }
+  const double threshold = least_squares_rank_threshold * max_pivot;
+  out.rank = static_cast<int>(std::count_if(pivots.begin(), pivots.end(), [&](double d) { return d > threshold; }));
+  if (out.rank < m) out.theta = Eigen::VectorXd();
+  return out;
+}
+
 Eigen::MatrixXd past_input_regressor(const Eigen::Ref<const Eigen::MatrixXd>& u, int past, bool with_current) {
   const int N = static_cast<int>(u.rows()), nu = static_cast<int>(u.cols()), p = past;
   if (p < 1 || N <= p) throw InputError("past_input_regressor: need 1 <= p < N");
   Eigen::MatrixXd Z(N - p, nu * p + (with_current ? nu : 0));
-  for (int k = 0; k < N - p; ++k) {
-    const int t = p + k;
-    for (int b = 0; b < p; ++b) Z.block(k, b * nu, 1, nu) = u.row(t - p + b);
-    if (with_current) Z.block(k, p * nu, 1, nu) = u.row(t);
-  }
+  // Row k (time t = p + k) holds u(t - p + b) in block b: block column b is u(b .. b + N - p - 1),
+  // copied block column by block column (Z is column-major; row by row missed the cache).
+  for (int b = 0; b < p; ++b) Z.middleCols(b * nu, nu) = u.middleRows(b, N - p);
+  if (with_current) Z.middleCols(p * nu, nu) = u.middleRows(p, N - p);
   return Z;
 }
 
@@ -384,12 +450,11 @@ PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
 
   // Step 4: least squares for theta~.
   r.regression = canonical_regression(r.structure, r.states, p, u, y);
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr2(r.regression.Psi);
-  qr2.setThreshold(least_squares_rank_threshold);
-  if (qr2.rank() < r.structure.parameter_count())
+  const RegressionLeastSquares ls = regression_least_squares(r.regression);
+  if (ls.rank < r.structure.parameter_count())
     throw InputError("the canonical parameters are not identifiable from these data: regressor rank " +
-                     std::to_string(qr2.rank()) + " < " + std::to_string(r.structure.parameter_count()));
-  r.theta = qr2.solve(r.regression.y);
+                     std::to_string(ls.rank) + " < " + std::to_string(r.structure.parameter_count()));
+  r.theta = ls.theta;
   r.model = r.structure.to_model(r.theta);
 
   // Equation (6): A_c and C_c read directly from [I; P].

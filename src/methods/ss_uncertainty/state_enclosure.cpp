@@ -103,37 +103,22 @@ VerifiedGram verify_gram(const Eigen::MatrixXd& Z) {
   return g;
 }
 
-// Upper bounds on sqrt(a_t^T R^{-1} a_t) and ||a_t|| for the rows a_t of W.
+// Upper bounds on sqrt(a_t^T R^{-1} a_t) and ||a_t|| for the rows a_t of a matrix W of
+// functionals, from s2_t = fl(||fl(X a_t)||^2) and w2_t = fl(||a_t||^2), each a computed sum of at
+// most `terms` squares.
 struct QuadraticBounds {
   Eigen::VectorXd root_q, norm;
 };
 
-QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::MatrixXd& W) {
-  // Only the columns W uses enter the product (the functionals below are sparse).
-  std::vector<Eigen::Index> used;
-  for (Eigen::Index j = 0; j < W.cols(); ++j)
-    if (!W.col(j).isZero(0)) used.push_back(j);
-  const auto m = static_cast<Eigen::Index>(used.size()), c = g.X.rows();
-  Eigen::MatrixXd Wu(W.rows(), m), S(W.rows(), c);  // row t of S: fl(X a_t)
-  for (Eigen::Index q = 0; q < m; ++q) Wu.col(q) = W.col(used[static_cast<std::size_t>(q)]);
-  if (m > 0 && used.back() == m - 1) {
-    // The columns used are 0..m-1 (the windows of the propagator functionals): X is lower
-    // triangular, so its top m x m corner is too and half of the product is zeros. Leaving
-    // them out changes no bound (gamma_c covers any order of summation, zeros add exactly).
-    S.leftCols(m).noalias() = Wu * g.X.topLeftCorner(m, m).transpose().triangularView<Eigen::Upper>();
-    if (c > m) S.rightCols(c - m).noalias() = Wu * g.X.bottomLeftCorner(c - m, m).transpose();
-  } else {
-    Eigen::MatrixXd Xu(c, m);
-    for (Eigen::Index q = 0; q < m; ++q) Xu.col(q) = g.X.col(used[static_cast<std::size_t>(q)]);
-    S.noalias() = Wu * Xu.transpose();
-  }
-  const Eigen::VectorXd s2 = S.rowwise().squaredNorm(), w2 = Wu.rowwise().squaredNorm();
-  QuadraticBounds b{Eigen::VectorXd(W.rows()), Eigen::VectorXd(W.rows())};
+QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::VectorXd& s2, const Eigen::VectorXd& w2,
+                                 Eigen::Index terms) {
+  const Eigen::Index rows = s2.size();
+  QuadraticBounds b{Eigen::VectorXd(rows), Eigen::VectorXd(rows)};
   RoundingScope upward;
   // A computed sum of n squares is at least (1 - gamma_n) times the exact one.
-  const I inflate = I(1.0) / (I(1.0) - I(gamma_n(std::max<Eigen::Index>(W.cols(), 1))));
+  const I inflate = I(1.0) / (I(1.0) - I(gamma_n(std::max<Eigen::Index>(terms, 1))));
   const I kq = boost::numeric::sqrt(I(g.kappa_q));
-  for (Eigen::Index t = 0; t < W.rows(); ++t) {
+  for (Eigen::Index t = 0; t < rows; ++t) {
     // std::sqrt is correctly rounded in the current (upward) mode: an upper bound, no mode switch
     // (Boost's interval sqrt switches to downward for the lower end we do not need).
     const double norm_a = std::sqrt((I(w2[t]) * inflate).upper());
@@ -143,6 +128,50 @@ QuadraticBounds quadratic_bounds(const VerifiedGram& g, const Eigen::MatrixXd& W
   }
   return b;
 }
+
+// Functionals whose nonzero entries are the columns first .. first + Wu.cols() - 1 (Wu holds
+// them): X is lower triangular, so only its rows from `first` on enter fl(X a_t).
+QuadraticBounds column_range_bounds(const VerifiedGram& g, const Eigen::Ref<const Eigen::MatrixXd>& Wu,
+                                    Eigen::Index first) {
+  const Eigen::Index c = g.X.rows(), m = Wu.cols();
+  const Eigen::MatrixXd S = Wu * g.X.block(first, first, c - first, m).transpose();
+  return quadratic_bounds(g, S.rowwise().squaredNorm(), Wu.rowwise().squaredNorm(), c);
+}
+
+// The propagator functionals of every lag at once. The functional of lag l at column c is the
+// window u_p(c + l) without its last l blocks: the first m_l = nu (p - l) entries of row c + l of
+// the window matrix Zx (rows r: u(r), ..., u(r + p - 1), zeros past the data). As X is lower
+// triangular, the first m_l entries of fl(X a) are those of row c + l of fl(Zx X^T), computed once
+// for all lags (each lag's own product was a third of a Monte Carlo run); only the entries from
+// m_l on, sums over the first m_l entries of a, are lag-specific. Gamma_c covers any order of
+// summation, and zeros add exactly, so the bounds are those of the separate products.
+class WindowFunctionals {
+ public:
+  WindowFunctionals(const VerifiedGram& g, const Eigen::Ref<const Eigen::MatrixXd>& u, int past, Eigen::Index cols,
+                    int K, int max_lag)
+      : g_(g), K_(K), nu_(u.cols()), Zx_(Eigen::MatrixXd::Zero(K + max_lag, cols)), Sx_(K + max_lag, cols) {
+    const Eigen::Index N = u.rows();
+    for (int b = 0; b < past; ++b) {  // block column by block column (contiguous)
+      const Eigen::Index rows = std::min<Eigen::Index>(K + max_lag, N - b);
+      Zx_.block(0, b * nu_, rows, nu_) = u.middleRows(b, rows);
+    }
+    Sx_.noalias() = Zx_ * g_.X.transpose().triangularView<Eigen::Upper>();
+  }
+
+  // Bounds for the functionals of lag l at columns 0 .. K-1.
+  QuadraticBounds bounds(int lag, int past) const {
+    const Eigen::Index c = g_.X.rows(), m = nu_ * (past - lag);
+    const auto Wu = Zx_.block(lag, 0, K_, m);
+    Eigen::VectorXd s2 = Sx_.block(lag, 0, K_, m).rowwise().squaredNorm();
+    if (c > m) s2 += (Wu * g_.X.bottomLeftCorner(c - m, m).transpose()).rowwise().squaredNorm();
+    return quadratic_bounds(g_, s2, Wu.rowwise().squaredNorm(), c);
+  }
+
+ private:
+  const VerifiedGram& g_;
+  Eigen::Index K_, nu_;
+  Eigen::MatrixXd Zx_, Sx_;  // windows and fl(Zx X^T)
+};
 
 // The Markov-parameter ellipsoid of one output: the true g satisfies
 // (g - g^)^T R (g - g^) <= level for the exact least-squares g^, and ||g^ - g_c|| <= offset for
@@ -205,13 +234,11 @@ MarkovEllipsoid markov_ellipsoid(const VerifiedGram& g, const Eigen::MatrixXd& Z
   return m;
 }
 
-// Radii sqrt(level) sqrt(a^T R^{-1} a) + offset ||a|| + extra ||a|| for the rows a of W.
-Eigen::VectorXd functional_radii(const VerifiedGram& g, const MarkovEllipsoid& m, const Eigen::MatrixXd& W,
-                                 double extra_per_norm) {
-  const QuadraticBounds q = quadratic_bounds(g, W);
-  Eigen::VectorXd r(W.rows());
+// Radii sqrt(level) sqrt(a^T R^{-1} a) + offset ||a|| + extra ||a|| for the functionals a of q.
+Eigen::VectorXd functional_radii(const MarkovEllipsoid& m, const QuadraticBounds& q, double extra_per_norm) {
+  Eigen::VectorXd r(q.norm.size());
   RoundingScope upward;
-  for (Eigen::Index t = 0; t < W.rows(); ++t)
+  for (Eigen::Index t = 0; t < r.size(); ++t)
     r[t] = (I(m.root_level) * I(q.root_q[t]) + (I(m.offset) + I(extra_per_norm)) * I(q.norm[t])).upper();
   return r;
 }
@@ -332,25 +359,26 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const
   // Column of the Markov parameter C_o A^j B (input block) in g: block p-1-j.
   auto block = [&](int j) { return static_cast<Eigen::Index>((p - 1 - j) * nu); };
 
+  int max_lag = 0;
+  for (const auto& r : st.rows()) max_lag = std::max(max_lag, r.lag);
+  const WindowFunctionals windows(gram, u, p, cols, K, max_lag);
   for (int k = 0; k < n; ++k) {
     const int l = st.rows()[static_cast<std::size_t>(k)].lag, o = st.rows()[static_cast<std::size_t>(k)].output;
     const MarkovEllipsoid& m = ell[static_cast<std::size_t>(o)];
     const Eigen::VectorXd& go = g[static_cast<std::size_t>(o)];
     // Propagator: x^_k(t) = a^T g^ with a = u_p(t+l) without its last l blocks; the stored x^
     // is a floating-point product (error <= gamma_cols ||a|| ||g_c||).
-    // Row c of every W below is a window of u: written block column by block column (contiguous).
-    Eigen::MatrixXd Wp = Eigen::MatrixXd::Zero(K, cols);
-    for (int b = 0; b + l < p; ++b) Wp.block(0, b * nu, K, nu) = u.middleRows(l + b, K);  // row c: u(c + l + b)
     const double rounding = (Interval(gram.gamma_cols) * Interval(m.g_norm)).upper();
-    const Eigen::VectorXd rp = functional_radii(gram, m, Wp, rounding);
+    const Eigen::VectorXd rp = functional_radii(m, windows.bounds(l, p), rounding);
     // Output: x_c,k(t) = y_o(t+l) - v - D_o u(t+l) - sum_{j<l} (C_o A^j B) u(t+l-1-j), for t+l < N.
-    Eigen::MatrixXd Wo = Eigen::MatrixXd::Zero(K, cols);
-    std::vector<Eigen::Index> wo_cols;  // the columns Wo uses, increasing
-    for (int j = 0; j < l; ++j) Wo.block(0, block(j), K - l, nu) = u.middleRows(p + l - 1 - j, K - l);  // u(t+l-1-j)
-    if (st.estimate_d()) Wo.block(0, nu * p, K - l, nu) = u.middleRows(p + l, K - l);                  // u(t+l)
-    for (Eigen::Index j = nu * (p - l); j < cols; ++j) wo_cols.push_back(j);  // blocks p-1-j, j < l; D
-    const Eigen::VectorXd ro = l == 0 && !st.estimate_d() ? Eigen::VectorXd::Zero(K)
-                                                          : functional_radii(gram, m, Wo, 0.0);
+    // Its functionals use the columns from nu (p - l) on (blocks p-1-j, j < l; then D): Wo holds
+    // those, one row per c, written block column by block column (contiguous).
+    const Eigen::Index wo_first = nu * (p - l);
+    Eigen::MatrixXd Wo = Eigen::MatrixXd::Zero(K, cols - wo_first);
+    for (int j = 0; j < l; ++j) Wo.block(0, block(j) - wo_first, K - l, nu) = u.middleRows(p + l - 1 - j, K - l);  // u(t+l-1-j)
+    if (st.estimate_d()) Wo.block(0, nu * p - wo_first, K - l, nu) = u.middleRows(p + l, K - l);  // u(t+l)
+    const Eigen::VectorXd ro = Wo.cols() == 0 ? Eigen::VectorXd::Zero(K)
+                                              : functional_radii(m, column_range_bounds(gram, Wo, wo_first), 0.0);
     RoundingScope upward;
     for (int c = 0; c < K; ++c) {
       const int t = p + c;
@@ -358,8 +386,8 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const
       I x = I(id.states(k, c)) + I(-radius, radius);
       if (c + l < K) {
         I obs(y(t + l, o));
-        for (const Eigen::Index j : wo_cols)
-          if (Wo(c, j) != 0) obs -= I(Wo(c, j)) * I(go[j]);
+        for (Eigen::Index q = 0; q < Wo.cols(); ++q)
+          if (Wo(c, q) != 0) obs -= I(Wo(c, q)) * I(go[wo_first + q]);
         const double noise = (I(a.noise_bound[o]) + I(ro[c])).upper();
         obs += I(-noise, noise);
         bool empty = false;
@@ -377,9 +405,8 @@ StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const
     if (k < 0) continue;
     const int l = st.rows()[static_cast<std::size_t>(i)].lag, o = st.rows()[static_cast<std::size_t>(i)].output;
     const MarkovEllipsoid& m = ell[static_cast<std::size_t>(o)];
-    Eigen::MatrixXd Wc = Eigen::MatrixXd::Zero(K - 1, cols);
-    Wc.block(0, block(l), K - 1, nu) = u.middleRows(p, K - 1);  // row c: u(p + c)
-    const Eigen::VectorXd rc = functional_radii(gram, m, Wc, 0.0);
+    // Row c: u(p + c) in the columns of block p-1-l.
+    const Eigen::VectorXd rc = functional_radii(m, column_range_bounds(gram, u.middleRows(p, K - 1), block(l)), 0.0);
     RoundingScope upward;
     // Rounding of the two stored states: gamma_cols ||a|| ||g_c|| each (see above).
     const I stored = I(2.0) * I(gram.gamma_cols) * I(m.g_norm) * I(window_norm);

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+
 #include <random>
 
 #include "sets/core/error.hpp"
@@ -172,3 +174,53 @@ TEST(PropagatorIdentification, MonteCarloMeansAgreeWithTheTrueValues) {
 }
 
 }  // namespace
+
+namespace {
+
+// The whole-Psi column-pivoted QR that regression_least_squares replaces.
+sets::RegressionLeastSquares whole_psi_least_squares(const sets::CanonicalRegression& r) {
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(r.Psi);
+  qr.setThreshold(sets::least_squares_rank_threshold);
+  return {qr.rank() == r.Psi.cols() ? Eigen::VectorXd(qr.solve(r.y)) : Eigen::VectorXd(), static_cast<int>(qr.rank())};
+}
+
+}  // namespace
+
+// One QR per equation's block gives the least-squares theta~ and the rank of one QR of Psi: on
+// identified regressions (D known or estimated, both row orders), on one whose input columns are
+// equal (every B block rank deficient) and on a Psi whose columns mix equations (one QR).
+TEST(PropagatorIdentification, EquationwiseLeastSquaresEqualsOneQrOfPsi) {
+  const auto sys = sets::farah::system();
+  for (const bool estimate_d : {false, true})
+    for (const auto selection : {sets::RowSelection::output_major, sets::RowSelection::lag_major}) {
+      const Eigen::MatrixXd u = binary_input(400, 2, 11);
+      Eigen::MatrixXd y = sets::simulate(sys, u);
+      std::mt19937_64 rng(3);
+      std::normal_distribution<double> g(0.0, 0.5);
+      for (Eigen::Index t = 0; t < y.rows(); ++t) y(t, 0) += g(rng), y(t, 1) += g(rng);
+      sets::PropagatorOptions o;
+      o.order = 3;
+      o.past = 10;
+      o.estimate_d = estimate_d;
+      o.selection = selection;
+      const auto id = sets::identify_propagator(u, y, o);
+      const auto blocks = sets::regression_least_squares(id.regression), whole = whole_psi_least_squares(id.regression);
+      ASSERT_EQ(blocks.rank, whole.rank);
+      ASSERT_EQ(blocks.rank, id.regression.Psi.cols());
+      EXPECT_LT((blocks.theta - whole.theta).norm(), 1e-12 * whole.theta.norm());
+      EXPECT_EQ(blocks.theta, id.theta);
+      // Equal input columns: the B columns of every state equation are equal.
+      sets::CanonicalRegression equal = id.regression;
+      const sets::CanonicalStructure& st = id.structure;
+      for (int i = 0; i < st.nx(); ++i) equal.Psi.col(st.b_offset(i) + 1) = equal.Psi.col(st.b_offset(i));
+      EXPECT_EQ(sets::regression_least_squares(equal).rank, whole_psi_least_squares(equal).rank);
+      EXPECT_LT(sets::regression_least_squares(equal).rank, equal.Psi.cols());
+      EXPECT_EQ(sets::regression_least_squares(equal).theta.size(), 0);
+      // A column with entries in two equations: one QR of the whole Psi, the same answer.
+      sets::CanonicalRegression mixed = id.regression;
+      mixed.Psi(0, st.b_offset(st.nx() - 1)) += 0.5;
+      const auto m1 = sets::regression_least_squares(mixed), m2 = whole_psi_least_squares(mixed);
+      EXPECT_EQ(m1.rank, m2.rank);
+      EXPECT_EQ(m1.theta, m2.theta);
+    }
+}

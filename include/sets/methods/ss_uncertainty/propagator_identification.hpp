@@ -113,6 +113,18 @@ Eigen::MatrixXd past_input_regressor(const Eigen::Ref<const Eigen::MatrixXd>& u,
 /// theta~): level_set_domain(regression) repeats the theta~ one with the same threshold.
 inline constexpr double least_squares_rank_threshold = 1e-10;
 
+/// The least-squares theta~ of a regression, and the rank of Psi. Every parameter of a
+/// canonical regression belongs to one equation (a row of A_c, B_c, C_c or D_c), so Psi is block
+/// diagonal up to the order of rows and columns: one column-pivoted QR per equation's block. The
+/// rank is Psi's (the blocks' pivots are those of a pivoted QR of Psi, whose columns of different
+/// blocks are orthogonal), counted against least_squares_rank_threshold times the largest pivot.
+/// A Psi whose columns mix equations gets one QR of the whole. theta is empty when rank < cols.
+struct RegressionLeastSquares {
+  Eigen::VectorXd theta;
+  int rank = 0;
+};
+RegressionLeastSquares regression_least_squares(const CanonicalRegression& regression);
+
 struct PropagatorOptions {
   int order = 0;                      // n_x
   int past = 20;                      // p >= n_x
