@@ -101,8 +101,11 @@ void bind_support_verdict(py::class_<FpsSupport>& c) {
 
 void bind_pui(py::module_& m) {
   py::enum_<OrthantSelection>(m, "OrthantSelection")
-      .value("remark2", OrthantSelection::remark2, "least-squares sign orthant, extended across faces a PUI reaches")
-      .value("all", OrthantSelection::all, "every one of the 2^p orthants (rigorous)");
+      .value("remark2", OrthantSelection::remark2,
+             "least-squares sign orthant (Cerone-Regruto Remark 2), extended across faces a PUI reaches; with "
+             "safe=True every other orthant is searched too unless a box proven from p samples misses it, so "
+             "the PUIs are those of `all`")
+      .value("all", OrthantSelection::all, "every one of the 2^p orthants");
   py::class_<PuiOptions>(m, "PuiOptions", "Options of pui() and support().")
       .def(py::init([](OrthantSelection orthants, bool safe, double zero_tolerance, bool working_set, bool warm_start) {
              PuiOptions o;

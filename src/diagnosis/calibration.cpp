@@ -9,7 +9,7 @@
 
 namespace sets {
 
-std::vector<double> fits(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& simulated) {
+std::vector<double> fits(const Eigen::Ref<const Eigen::MatrixXd>& measured, const Eigen::Ref<const Eigen::MatrixXd>& simulated) {
   std::vector<double> f;
   for (Eigen::Index j = 0; j < measured.cols(); ++j) f.push_back(fit_percent(measured.col(j), simulated.col(j)));
   return f;
@@ -102,13 +102,13 @@ CalibrationResult result_of(const Simulator& sim, const Eigen::VectorXd& paramet
 
 }  // namespace
 
-CalibrationResult evaluate(const Simulator& sim, const Eigen::VectorXd& parameters) {
+CalibrationResult evaluate(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& parameters) {
   Eigen::MatrixXd outputs;
   const bool ok = sim.simulate_outputs(parameters, outputs) && outputs.allFinite();
   return result_of(sim, parameters, std::move(outputs), ok);
 }
 
-CalibrationResult calibrate(const Simulator& sim, const Eigen::VectorXd& start, const std::vector<int>& free,
+CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& start, const std::vector<int>& free,
                             const CalibrationOptions& options) {
   CalibrationResult r = evaluate(sim, start);
   r.free = free;

@@ -53,7 +53,7 @@ Eigen::VectorXd centred(const Eigen::VectorXd& x) { return (x.array() - x.mean()
 
 }  // namespace
 
-ResidualTests test_residual(const Simulator& sim, const Eigen::VectorXd& p, const SimulationResult& at, const std::vector<double>& sigma) {
+ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& p, const SimulationResult& at, const std::vector<double>& sigma) {
   ResidualTests t;
   const Eigen::MatrixXd& Y = sim.measured();
   const Eigen::Index N = Y.rows(), ny = Y.cols();

@@ -15,8 +15,8 @@
 
 namespace sets {
 
-Eigen::VectorXd bounded_least_squares(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& lo,
-                                      const Eigen::VectorXd& hi) {
+Eigen::VectorXd bounded_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::VectorXd>& b,
+                                      const Eigen::Ref<const Eigen::VectorXd>& lo, const Eigen::Ref<const Eigen::VectorXd>& hi) {
   const Eigen::Index p = A.cols();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p);
   if (p == 0) return x;

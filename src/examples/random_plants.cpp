@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <random>
 #include <regex>
 #include <set>
@@ -429,214 +430,257 @@ std::vector<std::string> effects_for(const Build& b) {
   return e;
 }
 
-Effect make_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
+// The effects' shared tools: a new fixed parameter of the truth, an equation by its state, and
+// the force scale of an equation (its inertia times the RMS rate of its state).
+std::string new_fixed_param(Names& names, std::vector<ModelParameter>& ps, const std::vector<std::string>& hints, double v) {
+  ModelParameter p;
+  p.name = names(hints);
+  p.value = v;
+  p.fixed = true;
+  ps.push_back(p);
+  return p.name;
+}
+
+Eq& equation_of(std::vector<Eq>& eqs, const std::string& state) {
+  for (auto& e : eqs)
+    if (e.state == state) return e;
+  throw InputError("random plant: no equation " + state);
+}
+
+double force_scale(const Build& b, const Scales& sc, const std::string& eq_state) {
+  for (const auto& e : b.eqs)
+    if (e.state == eq_state) return (e.inertia.empty() ? 1.0 : b.value(e.inertia)) * std::max(sc.rate_rms.at(eq_state), 1e-300);
+  return 1.0;
+}
+
+// The lambdas below run later, many times: they capture the name generator by pointer.
+Effect friction_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
   Effect E;
   E.name = name;
-  Names* names = b.names;  // captured by pointer: the lambdas run later, many times
-  auto new_param = [names](std::vector<ModelParameter>& ps, const std::vector<std::string>& hints, double v) {
-    ModelParameter p;
-    p.name = (*names)(hints);
-    p.value = v;
-    p.fixed = true;
-    ps.push_back(p);
-    return p.name;
-  };
-  auto eq_of = [](std::vector<Eq>& eqs, const std::string& s) -> Eq& {
-    for (auto& e : eqs)
-      if (e.state == s) return e;
-    throw InputError("random plant: no equation " + s);
-  };
-  auto force_scale = [&](const std::string& eq_state) {
-    for (const auto& e : b.eqs)
-      if (e.state == eq_state) return (e.inertia.empty() ? 1.0 : b.value(e.inertia)) * std::max(sc.rate_rms.at(eq_state), 1e-300);
-    return 1.0;
-  };
-  const bool friction = name == "coulomb_friction" || name == "stribeck_friction" || name == "quadratic_drag" ||
-                        name == "asymmetric_friction" || name == "viscous_friction";
-  if (friction) {
-    // Friction acts on the first velocity (the measured side of a two-mass drive, or the other one).
-    const Velocity vel = name == "viscous_friction" ? b.velocities.front() : r.pick(b.velocities);
-    E.where = vel.eq;
-    const double F = force_scale(vel.eq), vr = std::max(sc.rms.at(vel.v), 1e-300);
-    const std::string v = vel.v;
-    if (name == "coulomb_friction") {
-      const bool smooth = r.chance(0.3);  // a tanh-smoothed law: maps onto Fc but not exactly
-      const double eps = r.uniform(0.005, 0.03) * vr;
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        const std::string Fc = new_param(ps, {"Fc", "fc", "Fcoul"}, k * F);
-        eq_of(eqs, vel.eq).extra.push_back(smooth ? Fc + "*tanh(" + v + "/" + str(eps) + ")" : Fc + "*sign(" + v + ")");
-        if (!smooth) values = {{"Fc", k * F}};
-      };
-    } else if (name == "stribeck_friction") {
-      const double ratio = r.uniform(1.0, 3.0), vs = r.uniform(0.1, 0.5) * vr;
-      const bool exponent2 = r.chance(0.7);
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        const std::string Fc = new_param(ps, {"Fc", "fc"}, k * F), Fs = new_param(ps, {"Fs", "fs"}, k * F * ratio);
-        const std::string law = exponent2 ? "exp(-(" + v + "/" + str(vs) + ")^2)" : "exp(-abs(" + v + ")/" + str(vs) + ")";
-        eq_of(eqs, vel.eq).extra.push_back("sign(" + v + ")*(" + Fc + " + " + Fs + "*" + law + ")");
-        if (exponent2) values = {{"Fc", k * F}, {"Fs", k * F * ratio}, {"vs", vs}};
-      };
-    } else if (name == "quadratic_drag") {
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        const std::string Cd = new_param(ps, {"Cd", "cd", "drag"}, k * F / (vr * vr));
-        eq_of(eqs, vel.eq).extra.push_back(Cd + "*" + v + "*abs(" + v + ")");
-        values = {{"Cd", k * F / (vr * vr)}};
-      };
-    } else if (name == "asymmetric_friction") {
-      const double a = r.uniform(0.2, 1.0), bneg = a * r.pick(std::vector<double>{r.uniform(0.1, 0.5), r.uniform(2.0, 5.0)});
-      const double dv = (r.chance(0.5) ? 1 : -1) * r.uniform(0.5, 1.5);
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        const double fp = k * F * a, fn = k * F * bneg, dfv = k * F / vr * dv;
-        const std::string P = new_param(ps, {"Fcp", "fpos"}, fp), M = new_param(ps, {"Fcn", "fneg"}, fn);
-        const std::string D = new_param(ps, {"dFv", "dvisc"}, dfv);
-        eq_of(eqs, vel.eq).extra.push_back("(" + P + "*(" + v + " > 0) - " + M + "*(" + v + " < 0) + " + D + "*" + v + "*(" + v + " > 0))");
-        values = {{"Fc_pos", fp}, {"Fc_neg", fn}, {"dFv", dfv}};
-      };
-    } else {  // viscous_friction: the nominal leaves the damping out
-      E.has_knob = false;
-      E.apply = [=](double, auto&, auto&, auto&, auto&, auto&, auto& values) { values = {{"Fv", b.value(vel.damping)}}; };
-    }
-    return E;
-  }
-  if (name == "cubic_stiffness" || name == "bouc_wen_hysteresis") {
-    // Named copies, not a structured binding: clang 14 (the sanitizer and fuzz builds) cannot capture one.
-    const auto& spring = r.pick(b.springs);
-    const std::string q = spring.first, eq = spring.second;
-    E.where = eq;
-    const double F = force_scale(eq), qr = std::max(sc.rms.at(q), 1e-300), qrange = std::max(sc.range.at(q), 1e-300);
-    if (name == "cubic_stiffness") {
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        const double k3 = k * F / (qr * qr * qr);
-        eq_of(eqs, eq).extra.push_back(new_param(ps, {"k3", "kc", "knl"}, k3) + "*" + q + "^3");
-        values = {{"k3", k3}};
-      };
-    } else {
-      std::string v;
-      for (const auto& vel : b.velocities)
-        if (vel.q == q) v = vel.v;
-      const double yield = r.uniform(0.05, 0.3) * qrange, share = r.uniform(0.3, 0.9), sum = 1.0 / yield;
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto& states, auto& ps, auto& values) {
-        // z' = alpha v - beta (gamma |v| |z|^(n-1) z + delta v |z|^n), n = 1, force -z: z saturates
-        // at alpha * yield (beta gamma + beta delta = 1 / yield), so the knob scales the force.
-        const double alpha = k * F / yield;
-        const std::string z = (*names)({"z", "zh", "bw"});
-        const std::string pa = new_param(ps, {"alpha", "kbw"}, alpha);
-        const std::string pg = new_param(ps, {"gam", "gbw"}, share * sum), pd = new_param(ps, {"del", "dbw"}, (1 - share) * sum);
-        states.push_back({z, 0.0, ""});
-        Eq ez{z, pa + "*" + v + " - (" + pg + "*abs(" + v + ")*" + z + " + " + pd + "*" + v + "*abs(" + z + "))", "", {}, ""};
-        eqs.push_back(ez);
-        eq_of(eqs, eq).extra.push_back(z);
-        values = {{"alpha", alpha}};
-      };
-    }
-    return E;
-  }
-  if (name == "constant_offset") {
-    const std::string eq = r.pick(b.offset_eqs);
-    E.where = eq;
-    const double F = force_scale(eq), sgn = r.chance(0.5) ? 1 : -1;
+  Names* names = b.names;
+  // Friction acts on the first velocity (the measured side of a two-mass drive, or the other one).
+  const Velocity vel = name == "viscous_friction" ? b.velocities.front() : r.pick(b.velocities);
+  E.where = vel.eq;
+  const double F = force_scale(b, sc, vel.eq), vr = std::max(sc.rms.at(vel.v), 1e-300);
+  const std::string v = vel.v;
+  if (name == "coulomb_friction") {
+    const bool smooth = r.chance(0.3);  // a tanh-smoothed law: maps onto Fc but not exactly
+    const double eps = r.uniform(0.005, 0.03) * vr;
     E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-      const double off = sgn * k * F;
-      eq_of(eqs, eq).extra.push_back(new_param(ps, {"off", "bias", "d0"}, off));
-      values = {{"offset", off}};
+      const std::string Fc = new_fixed_param(*names, ps, {"Fc", "fc", "Fcoul"}, k * F);
+      equation_of(eqs, vel.eq).extra.push_back(smooth ? Fc + "*tanh(" + v + "/" + str(eps) + ")" : Fc + "*sign(" + v + ")");
+      if (!smooth) values = {{"Fc", k * F}};
+    };
+  } else if (name == "stribeck_friction") {
+    const double ratio = r.uniform(1.0, 3.0), vs = r.uniform(0.1, 0.5) * vr;
+    const bool exponent2 = r.chance(0.7);
+    E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+      const std::string Fc = new_fixed_param(*names, ps, {"Fc", "fc"}, k * F);
+      const std::string Fs = new_fixed_param(*names, ps, {"Fs", "fs"}, k * F * ratio);
+      const std::string law = exponent2 ? "exp(-(" + v + "/" + str(vs) + ")^2)" : "exp(-abs(" + v + ")/" + str(vs) + ")";
+      equation_of(eqs, vel.eq).extra.push_back("sign(" + v + ")*(" + Fc + " + " + Fs + "*" + law + ")");
+      if (exponent2) values = {{"Fc", k * F}, {"Fs", k * F * ratio}, {"vs", vs}};
+    };
+  } else if (name == "quadratic_drag") {
+    E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+      const std::string Cd = new_fixed_param(*names, ps, {"Cd", "cd", "drag"}, k * F / (vr * vr));
+      equation_of(eqs, vel.eq).extra.push_back(Cd + "*" + v + "*abs(" + v + ")");
+      values = {{"Cd", k * F / (vr * vr)}};
+    };
+  } else if (name == "asymmetric_friction") {
+    const double a = r.uniform(0.2, 1.0), bneg = a * r.pick(std::vector<double>{r.uniform(0.1, 0.5), r.uniform(2.0, 5.0)});
+    const double dv = (r.chance(0.5) ? 1 : -1) * r.uniform(0.5, 1.5);
+    E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+      const double fp = k * F * a, fn = k * F * bneg, dfv = k * F / vr * dv;
+      const std::string P = new_fixed_param(*names, ps, {"Fcp", "fpos"}, fp), M = new_fixed_param(*names, ps, {"Fcn", "fneg"}, fn);
+      const std::string D = new_fixed_param(*names, ps, {"dFv", "dvisc"}, dfv);
+      equation_of(eqs, vel.eq).extra.push_back("(" + P + "*(" + v + " > 0) - " + M + "*(" + v + " < 0) + " + D + "*" + v + "*(" + v + " > 0))");
+      values = {{"Fc_pos", fp}, {"Fc_neg", fn}, {"dFv", dfv}};
+    };
+  } else {  // viscous_friction: the nominal leaves the damping out
+    E.has_knob = false;
+    E.apply = [=](double, auto&, auto&, auto&, auto&, auto&, auto& values) { values = {{"Fv", b.value(vel.damping)}}; };
+  }
+  return E;
+}
+
+Effect spring_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
+  Effect E;
+  E.name = name;
+  Names* names = b.names;
+  // Named copies, not a structured binding: clang 14 (the sanitizer and fuzz builds) cannot capture one.
+  const auto& spring = r.pick(b.springs);
+  const std::string q = spring.first, eq = spring.second;
+  E.where = eq;
+  const double F = force_scale(b, sc, eq), qr = std::max(sc.rms.at(q), 1e-300), qrange = std::max(sc.range.at(q), 1e-300);
+  if (name == "cubic_stiffness") {
+    E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+      const double k3 = k * F / (qr * qr * qr);
+      equation_of(eqs, eq).extra.push_back(new_fixed_param(*names, ps, {"k3", "kc", "knl"}, k3) + "*" + q + "^3");
+      values = {{"k3", k3}};
     };
     return E;
   }
-  if (name == "dead_zone" || name == "input_saturation" || name == "backlash" || name == "time_delay") {
-    const std::string a = r.pick(b.actuators);
-    E.where = a;
-    const double amax = std::max(sc.maxabs.at(a), 1e-300), arange = std::max(sc.range.at(a), 1e-300);
-    const double Ts = b.Ts, period = b.period;
-    E.apply = [=](double k, auto& eqs, auto& sampled, auto&, auto&, auto& ps, auto& values) {
-      const std::string s = (*names)({a + "_eff", a + "_act", "ua"});
-      std::string expr;
-      if (name == "dead_zone") {
-        const double d = amax * k / (1 + k);
-        const std::string p = new_param(ps, {"d", "dz", "deadband"}, d);
-        expr = a + " - min(max(" + a + ", -" + p + "), " + p + ")";
-        values = {{"d", d}};
-      } else if (name == "input_saturation") {
-        const double umax = amax / (1 + k);
-        const std::string p = new_param(ps, {"umax", "sat", "lim"}, umax);
-        expr = "min(max(" + a + ", -" + p + "), " + p + ")";
-        values = {{"umax", umax}};
-      } else if (name == "backlash") {
-        const double w = arange * k / (1 + k) / 2;
-        const std::string p = new_param(ps, {"play", "bl", "gap"}, w);
-        expr = "max(" + a + " - " + p + ", min(" + a + " + " + p + ", prev(" + s + ", 1)))";
-        values = {{"b", w}};
-      } else {
-        const int n = std::max(1, static_cast<int>(std::lround(k * period / Ts)));
-        expr = "prev(" + a + ", " + std::to_string(n) + ")";
-        values = {{"n", static_cast<double>(n)}};
-      }
-      sampled.emplace_back(s, expr);
-      for (auto& e : eqs) e.body = replace_word(e.body, a, s);
-    };
-    return E;
-  }
-  if (name == "output_saturation" || name == "hysteresis" || name == "absolute_value_sensor") {
-    std::vector<std::string> sensed;  // outputs that are states (not a recorded command)
-    for (const auto& [sym, col] : b.outputs)
-      for (const auto& st : b.states)
-        if (st.name == sym) sensed.push_back(sym);
-    const std::string y = r.pick(sensed);
-    E.where = y;
-    const double lo = sc.min.at(y), top = sc.max.at(y), range = std::max(sc.range.at(y), 1e-300);
-    const bool both = r.chance(0.5), upper = r.chance(0.5);
-    if (name == "absolute_value_sensor") E.has_knob = false;
-    E.apply = [=](double k, auto&, auto& sampled, auto& outputs, auto&, auto& ps, auto& values) {
-      const std::string s = (*names)({y + "_s", y + "_sens", "ys"});
-      std::string expr;
-      if (name == "output_saturation") {
-        // Clip a fraction k/(1+k) of the range off one end (or at most 45 % off both).
-        const double cut = range * k / (1 + k) * (both ? 0.45 : 1.0);
-        const double hi = top + (upper || both ? -cut : 1e3 * range);
-        const double lo2 = lo + (!upper || both ? cut : -1e3 * range);
-        const std::string ph = new_param(ps, {"ymax", "yhi"}, hi), pl = new_param(ps, {"ymin", "ylo"}, lo2);
-        expr = "min(max(" + y + ", " + pl + "), " + ph + ")";
-        values.clear();
-        if (upper || both) values.push_back({"y_hi", hi});
-        if (!upper || both) values.push_back({"y_lo", lo2});
-      } else if (name == "hysteresis") {
-        const double w = range * 0.1 * k;
-        const std::string p = new_param(ps, {"w", "play_s", "hw"}, w);
-        expr = "max(" + y + " - " + p + ", min(" + y + " + " + p + ", prev(" + s + ", 1)))";
-        values = {{"w", w}};
-      } else {
-        expr = "abs(" + y + ")";
-      }
-      sampled.emplace_back(s, expr);
-      for (auto& o : outputs)
-        if (o.first == y) o.first = s;
-    };
-    return E;
-  }
-  if (name == "sqrt_outflow" || name == "state_saturation") {
-    const auto& level = r.pick(b.levels);  // named copies: see cubic_stiffness
-    const std::string h = level.first, a = level.second;
-    E.where = h;
-    const double hm = std::max(sc.mean.at(h), 1e-300), hmax = sc.max.at(h), hrange = sc.range.at(h);
-    if (name == "sqrt_outflow") {
-      E.has_knob = false;
-      const double av = b.value(a);
-      E.apply = [=](double, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        // Same outflow at the mean level: a h = as sqrt(h) there.
-        const double as = av * std::sqrt(hm);
-        const std::string p = new_param(ps, {"as", "cv", "kv"}, as);
-        for (auto& e : eqs) e.body = std::regex_replace(e.body, std::regex("\\b" + a + "\\*" + h + "\\b"), p + "*sqrt(max(" + h + ", 0))");
-        values = {{"a_sqrt", as}};
-      };
+  std::string v;  // bouc_wen_hysteresis
+  for (const auto& vel : b.velocities)
+    if (vel.q == q) v = vel.v;
+  const double yield = r.uniform(0.05, 0.3) * qrange, share = r.uniform(0.3, 0.9), sum = 1.0 / yield;
+  E.apply = [=](double k, auto& eqs, auto&, auto&, auto& states, auto& ps, auto& values) {
+    // z' = alpha v - beta (gamma |v| |z|^(n-1) z + delta v |z|^n), n = 1, force -z: z saturates
+    // at alpha * yield (beta gamma + beta delta = 1 / yield), so the knob scales the force.
+    const double alpha = k * F / yield;
+    const std::string z = (*names)({"z", "zh", "bw"});
+    const std::string pa = new_fixed_param(*names, ps, {"alpha", "kbw"}, alpha);
+    const std::string pg = new_fixed_param(*names, ps, {"gam", "gbw"}, share * sum);
+    const std::string pd = new_fixed_param(*names, ps, {"del", "dbw"}, (1 - share) * sum);
+    states.push_back({z, 0.0, ""});
+    Eq ez{z, pa + "*" + v + " - (" + pg + "*abs(" + v + ")*" + z + " + " + pd + "*" + v + "*abs(" + z + "))", "", {}, ""};
+    eqs.push_back(ez);
+    equation_of(eqs, eq).extra.push_back(z);
+    values = {{"alpha", alpha}};
+  };
+  return E;
+}
+
+Effect offset_effect(Rng& r, const Build& b, const Scales& sc) {
+  Effect E;
+  E.name = "constant_offset";
+  Names* names = b.names;
+  const std::string eq = r.pick(b.offset_eqs);
+  E.where = eq;
+  const double F = force_scale(b, sc, eq), sgn = r.chance(0.5) ? 1 : -1;
+  E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+    const double off = sgn * k * F;
+    equation_of(eqs, eq).extra.push_back(new_fixed_param(*names, ps, {"off", "bias", "d0"}, off));
+    values = {{"offset", off}};
+  };
+  return E;
+}
+
+// dead_zone, input_saturation, backlash, time_delay: a sampled signal between an input and the equations.
+Effect actuator_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
+  Effect E;
+  E.name = name;
+  Names* names = b.names;
+  const std::string a = r.pick(b.actuators);
+  E.where = a;
+  const double amax = std::max(sc.maxabs.at(a), 1e-300), arange = std::max(sc.range.at(a), 1e-300);
+  const double Ts = b.Ts, period = b.period;
+  E.apply = [=](double k, auto& eqs, auto& sampled, auto&, auto&, auto& ps, auto& values) {
+    const std::string s = (*names)({a + "_eff", a + "_act", "ua"});
+    std::string expr;
+    if (name == "dead_zone") {
+      const double d = amax * k / (1 + k);
+      const std::string p = new_fixed_param(*names, ps, {"d", "dz", "deadband"}, d);
+      expr = a + " - min(max(" + a + ", -" + p + "), " + p + ")";
+      values = {{"d", d}};
+    } else if (name == "input_saturation") {
+      const double umax = amax / (1 + k);
+      const std::string p = new_fixed_param(*names, ps, {"umax", "sat", "lim"}, umax);
+      expr = "min(max(" + a + ", -" + p + "), " + p + ")";
+      values = {{"umax", umax}};
+    } else if (name == "backlash") {
+      const double w = arange * k / (1 + k) / 2;
+      const std::string p = new_fixed_param(*names, ps, {"play", "bl", "gap"}, w);
+      expr = "max(" + a + " - " + p + ", min(" + a + " + " + p + ", prev(" + s + ", 1)))";
+      values = {{"b", w}};
     } else {
-      E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
-        const double lim = hmax - hrange * k / (1 + k);
-        const std::string p = new_param(ps, {"hmax", "hlim", "top"}, lim);
-        eq_of(eqs, h).wrap = "@f - max(@f, 0)*(" + h + " >= " + p + ")";
-        values = {{"x_max", lim}};
-      };
+      const int n = std::max(1, static_cast<int>(std::lround(k * period / Ts)));
+      expr = "prev(" + a + ", " + std::to_string(n) + ")";
+      values = {{"n", static_cast<double>(n)}};
     }
+    sampled.emplace_back(s, expr);
+    for (auto& e : eqs) e.body = replace_word(e.body, a, s);
+  };
+  return E;
+}
+
+// output_saturation, hysteresis, absolute_value_sensor: a sampled signal between a state and an output.
+Effect sensor_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
+  Effect E;
+  E.name = name;
+  Names* names = b.names;
+  std::vector<std::string> sensed;  // outputs that are states (not a recorded command)
+  for (const auto& [sym, col] : b.outputs)
+    for (const auto& st : b.states)
+      if (st.name == sym) sensed.push_back(sym);
+  const std::string y = r.pick(sensed);
+  E.where = y;
+  const double lo = sc.min.at(y), top = sc.max.at(y), range = std::max(sc.range.at(y), 1e-300);
+  const bool both = r.chance(0.5), upper = r.chance(0.5);
+  if (name == "absolute_value_sensor") E.has_knob = false;
+  E.apply = [=](double k, auto&, auto& sampled, auto& outputs, auto&, auto& ps, auto& values) {
+    const std::string s = (*names)({y + "_s", y + "_sens", "ys"});
+    std::string expr;
+    if (name == "output_saturation") {
+      // Clip a fraction k/(1+k) of the range off one end (or at most 45 % off both).
+      const double cut = range * k / (1 + k) * (both ? 0.45 : 1.0);
+      const double hi = top + (upper || both ? -cut : 1e3 * range);
+      const double lo2 = lo + (!upper || both ? cut : -1e3 * range);
+      const std::string ph = new_fixed_param(*names, ps, {"ymax", "yhi"}, hi);
+      const std::string pl = new_fixed_param(*names, ps, {"ymin", "ylo"}, lo2);
+      expr = "min(max(" + y + ", " + pl + "), " + ph + ")";
+      values.clear();
+      if (upper || both) values.push_back({"y_hi", hi});
+      if (!upper || both) values.push_back({"y_lo", lo2});
+    } else if (name == "hysteresis") {
+      const double w = range * 0.1 * k;
+      const std::string p = new_fixed_param(*names, ps, {"w", "play_s", "hw"}, w);
+      expr = "max(" + y + " - " + p + ", min(" + y + " + " + p + ", prev(" + s + ", 1)))";
+      values = {{"w", w}};
+    } else {
+      expr = "abs(" + y + ")";
+    }
+    sampled.emplace_back(s, expr);
+    for (auto& o : outputs)
+      if (o.first == y) o.first = s;
+  };
+  return E;
+}
+
+// sqrt_outflow (replaces a linear outflow a*h) and state_saturation (a level that cannot pass a limit).
+Effect level_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
+  Effect E;
+  E.name = name;
+  Names* names = b.names;
+  const auto& level = r.pick(b.levels);  // named copies: see spring_effect
+  const std::string h = level.first, a = level.second;
+  E.where = h;
+  const double hm = std::max(sc.mean.at(h), 1e-300), hmax = sc.max.at(h), hrange = sc.range.at(h);
+  if (name == "sqrt_outflow") {
+    E.has_knob = false;
+    const double av = b.value(a);
+    E.apply = [=](double, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+      // Same outflow at the mean level: a h = as sqrt(h) there.
+      const double as = av * std::sqrt(hm);
+      const std::string p = new_fixed_param(*names, ps, {"as", "cv", "kv"}, as);
+      for (auto& e : eqs) e.body = std::regex_replace(e.body, std::regex("\\b" + a + "\\*" + h + "\\b"), p + "*sqrt(max(" + h + ", 0))");
+      values = {{"a_sqrt", as}};
+    };
     return E;
   }
+  E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
+    const double lim = hmax - hrange * k / (1 + k);
+    const std::string p = new_fixed_param(*names, ps, {"hmax", "hlim", "top"}, lim);
+    equation_of(eqs, h).wrap = "@f - max(@f, 0)*(" + h + " >= " + p + ")";
+    values = {{"x_max", lim}};
+  };
+  return E;
+}
+
+Effect make_effect(Rng& r, const Build& b, const std::string& name, const Scales& sc) {
+  static const std::set<std::string> friction = {"coulomb_friction", "stribeck_friction", "quadratic_drag",
+                                                 "asymmetric_friction", "viscous_friction"};
+  static const std::set<std::string> spring = {"cubic_stiffness", "bouc_wen_hysteresis"};
+  static const std::set<std::string> actuator = {"dead_zone", "input_saturation", "backlash", "time_delay"};
+  static const std::set<std::string> sensor = {"output_saturation", "hysteresis", "absolute_value_sensor"};
+  static const std::set<std::string> level = {"sqrt_outflow", "state_saturation"};
+  if (friction.count(name)) return friction_effect(r, b, name, sc);
+  if (spring.count(name)) return spring_effect(r, b, name, sc);
+  if (name == "constant_offset") return offset_effect(r, b, sc);
+  if (actuator.count(name)) return actuator_effect(r, b, name, sc);
+  if (sensor.count(name)) return sensor_effect(r, b, name, sc);
+  if (level.count(name)) return level_effect(r, b, name, sc);
   throw InputError("random plant: effect " + name + " not available here");
 }
 
@@ -661,6 +705,275 @@ std::vector<double> add_noise(Rng& r, const Eigen::VectorXd& y, const std::strin
   return out;
 }
 
+// ------------------------------------------------------------------ the stages of random_plant
+void draw_family(Rng& r, Build& b) {
+  if (b.family == "one_mass") one_mass(r, b);
+  else if (b.family == "two_mass") two_mass(r, b);
+  else if (b.family == "motor") motor(r, b);
+  else if (b.family == "thermal") thermal(r, b);
+  else if (b.family == "tanks") tanks(r, b);
+  else if (b.family == "position_loop") position_loop(r, b);
+  else throw InputError("random plant: unknown family \"" + b.family + "\"");
+}
+
+// The estimation and validation records: time, excited inputs, outputs still zero.
+struct Records {
+  std::string time_col, excitation_kind;
+  double per_time_scale = 0;  // samples per dominant time scale
+  int n = 0;
+  Recording est, val;
+};
+
+Records draw_records(Rng& r, Names& names, Build& b, const RandomPlantOptions& options) {
+  Records rec;
+  // Sampling: from about 6 to several hundred samples per dominant time scale.
+  rec.per_time_scale = r.log_uniform(6, 300);
+  b.Ts = b.period / rec.per_time_scale;
+  rec.n = options.samples > 0 ? options.samples : r.integer(2500, 5000);
+  rec.time_col = names({"t", "time", "tt"});
+  rec.excitation_kind = r.pick(std::vector<std::string>{"steps", "steps", "prbs", "multisine", "noise", "few_steps", "sine"});
+  std::vector<double> tcol(static_cast<std::size_t>(rec.n));
+  for (int k = 0; k < rec.n; ++k) tcol[static_cast<std::size_t>(k)] = k * b.Ts;
+  for (Recording* one : {&rec.est, &rec.val}) {
+    one->add(rec.time_col, tcol);
+    for (const auto& [sym, col] : b.inputs)
+      one->add(col, excitation(r, rec.excitation_kind, rec.n, b.Ts, b.u_lo, b.u_hi, b.period));
+    for (const auto& [sym, col] : b.outputs) one->add(col, std::vector<double>(static_cast<std::size_t>(rec.n), 0.0));
+  }
+  return rec;
+}
+
+// Two effects of one kind (two friction laws, two sensor laws, a square-root outflow beside a
+// saturated level of another law) would describe one thing twice.
+bool clash(const std::string& a, const std::string& c) {
+  static const std::set<std::string> friction = {"coulomb_friction", "stribeck_friction", "quadratic_drag",
+                                                 "asymmetric_friction", "viscous_friction"};
+  static const std::set<std::string> sensor = {"output_saturation", "hysteresis", "absolute_value_sensor"};
+  return a == c || (friction.count(a) && friction.count(c)) || (sensor.count(a) && sensor.count(c)) ||
+         ((a == "sqrt_outflow") != (c == "sqrt_outflow") && (a == "state_saturation" || c == "state_saturation"));
+}
+
+// How many effects, which; nullopt when the forced effect cannot enter the drawn family (draw again).
+std::optional<std::vector<std::string>> draw_effect_names(Rng& r, const Build& b, const RandomPlantOptions& options) {
+  int count = options.effects;
+  if (count < 0) {
+    const double u = r.uniform(0, 1);
+    count = u < 0.3 ? 0 : u < 0.7 ? 1 : 2;
+  }
+  std::vector<std::string> avail = effects_for(b), drawn;
+  if (!options.effect.empty()) {
+    if (std::find(avail.begin(), avail.end(), options.effect) == avail.end()) {
+      if (!options.family.empty()) throw InputError("random plant: " + options.effect + " cannot enter a " + b.family + " plant");
+      return std::nullopt;
+    }
+    drawn.push_back(options.effect);
+  }
+  while (static_cast<int>(drawn.size()) < count) {
+    const std::string e = r.pick(avail);
+    bool ok = true;
+    for (const auto& d : drawn) ok = ok && !clash(d, e);
+    if (ok) drawn.push_back(e);
+    else if (avail.size() < 3) break;
+  }
+  return drawn;
+}
+
+// The plant without effects simulated on the estimation input (its scales size the effects).
+// A plant that grows without bound is not a plant anyone identifies: the second half of every
+// signal must stay within 100 x the first half's RMS.
+bool simulates_bounded(const Build& b, const Records& rec, SimulationResult& clean) {
+  const ModelFile model = model_of(b, b.eqs, b.sampled, b.outputs, b.states, {}, b.params, rec.time_col);
+  try {
+    Simulator s(model, rec.est, {10});
+    clean = s.simulate(s.parameter_values());
+  } catch (const std::exception&) {
+    return false;
+  }
+  bool bounded = clean.values.allFinite();
+  for (Eigen::Index v = 0; bounded && v < clean.values.cols(); ++v) {
+    const Eigen::Index h = clean.values.rows() / 2;
+    const double first = clean.values.col(v).head(h).norm(), second = clean.values.col(v).tail(h).norm();
+    bounded = second <= 100 * first + 1e-300;
+  }
+  return bounded;
+}
+
+// Noise per output, drawn before the effects' strengths: every effect must move the outputs by
+// several noise levels.
+struct Noise {
+  std::vector<double> fraction;  // of the output's standard deviation
+  std::vector<std::string> kind;
+  double max_fraction = 0;
+};
+
+Noise draw_noise(Rng& r, std::size_t outputs) {
+  Noise noise;
+  for (std::size_t j = 0; j < outputs; ++j) {
+    noise.fraction.push_back(r.log_uniform(0.002, 0.03));
+    noise.kind.push_back(r.pick(std::vector<std::string>{"white", "white", "coloured", "quantised"}));
+  }
+  noise.max_fraction = *std::max_element(noise.fraction.begin(), noise.fraction.end());
+  return noise;
+}
+
+bool simulate_outputs(const ModelFile& m, const Recording& rec, Eigen::MatrixXd& y) {
+  try {
+    Simulator s(m, rec, {10});
+    return s.simulate_outputs(s.parameter_values(), y);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+using EffectValues = std::vector<std::pair<std::string, double>>;
+
+// The truth with the effects at knobs k, one of them left out (skip) or none (-1).
+class Truth {
+ public:
+  Truth(const Build& b, const std::vector<Effect>& effects, std::string time_col)
+      : b_(b), effects_(effects), time_col_(std::move(time_col)) {}
+
+  ModelFile with(const std::vector<double>& knobs, int skip, std::vector<EffectValues>* values) const {
+    std::vector<Eq> eqs = b_.eqs;
+    NamedTexts sampled = b_.sampled, outputs = b_.outputs;
+    std::vector<ModelState> states = b_.states;
+    std::vector<ModelParameter> ps = b_.params;
+    for (std::size_t i = 0; i < effects_.size(); ++i) {
+      EffectValues v;
+      if (static_cast<int>(i) != skip) effects_[i].apply(knobs[i], eqs, sampled, outputs, states, ps, v);
+      if (values) values->push_back(v);
+    }
+    // The truth has the damping the nominal leaves out; without the viscous effect it goes too.
+    std::vector<std::string> removed;
+    if (skip >= 0 && effects_[static_cast<std::size_t>(skip)].name == "viscous_friction") removed = b_.removed;
+    return model_of(b_, eqs, sampled, outputs, states, removed, ps, time_col_);
+  }
+
+  // Strength of effect i: the RMS output deviation it causes (the others present) over the RMS
+  // of the output, largest over the outputs; -1 when a simulation fails.
+  double strength(const std::vector<double>& knobs, std::size_t i, const Recording& est) const {
+    Eigen::MatrixXd y1, y0;
+    if (!simulate_outputs(with(knobs, -1, nullptr), est, y1) || !simulate_outputs(with(knobs, static_cast<int>(i), nullptr), est, y0))
+      return -1.0;
+    double s = 0;
+    for (Eigen::Index j = 0; j < y1.cols(); ++j) {
+      const double den = std::sqrt((y0.col(j).array() - y0.col(j).mean()).square().mean());
+      s = std::max(s, std::sqrt((y1.col(j) - y0.col(j)).array().square().mean()) / std::max(den, 1e-300));
+    }
+    return s;
+  }
+
+  const std::vector<Effect>& effects() const { return effects_; }
+
+ private:
+  const Build& b_;
+  const std::vector<Effect>& effects_;
+  std::string time_col_;
+};
+
+// Each effect's knob set by bisection on log(knob) for a drawn strength; false when an effect
+// cannot be made strong enough to see or weak enough to hide.
+bool set_strengths(Rng& r, const Truth& truth, const Recording& est, const Noise& noise, std::vector<double>& knobs,
+                   std::vector<double>& strengths) {
+  const double floor = noise.max_fraction;
+  for (std::size_t i = 0; i < truth.effects().size(); ++i) {
+    const double target = r.log_uniform(std::max(0.04, 4 * floor), 0.4);
+    if (!truth.effects()[i].has_knob) {
+      strengths[i] = truth.strength(knobs, i, est);
+      // A mirror or a square-root law cannot be made weak.
+      if (!(strengths[i] >= std::max(0.03, 3 * floor) && strengths[i] <= 1.5)) return false;
+      continue;
+    }
+    double lo = std::log(1e-4), hi = std::log(20.0);
+    for (int it = 0; it < 18; ++it) {
+      knobs[i] = std::exp(0.5 * (lo + hi));
+      const double s = truth.strength(knobs, i, est);
+      if (s < 0 || s > target) hi = std::log(knobs[i]);
+      else lo = std::log(knobs[i]);
+    }
+    knobs[i] = std::exp(lo);
+    strengths[i] = truth.strength(knobs, i, est);
+    if (!(strengths[i] >= 0.6 * target && strengths[i] >= 3 * floor && strengths[i] <= 0.5)) return false;
+  }
+  return true;
+}
+
+// Strong enough to matter: without it, the plant's own structure calibrated on the noise-free
+// outputs (from the true values) still misses by at least 2 noise levels RMS on some output.
+bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, const Recording& est, const Noise& noise,
+                const std::vector<double>& knobs, std::vector<double>& detectability) {
+  const std::size_t count = truth_of.effects().size();
+  detectability.assign(count, 0.0);
+  Eigen::MatrixXd y;
+  if (!simulate_outputs(truth, est, y)) return false;
+  Recording clean_rec = est;
+  for (std::size_t j = 0; j < b.outputs.size(); ++j) {
+    const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
+    clean_rec.add(b.outputs[j].second, std::vector<double>(yj.data(), yj.data() + yj.size()));
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    try {
+      Simulator s(truth_of.with(knobs, static_cast<int>(i), nullptr), clean_rec, {2});
+      const CalibrationResult cr = calibrate(s, s.parameter_values(), s.free_parameters());
+      for (Eigen::Index j = 0; cr.ok && j < y.cols(); ++j) {
+        const double sd = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean());
+        const double miss = std::sqrt((y.col(j) - cr.outputs.col(j)).array().square().mean());
+        detectability[i] = std::max(detectability[i], miss / std::max(noise.fraction[static_cast<std::size_t>(j)] * sd, 1e-300));
+      }
+    } catch (const std::exception&) {
+    }
+    if (detectability[i] < 2.0) return false;
+  }
+  return true;
+}
+
+// The measured outputs: the truth simulated on each record plus the drawn noise; sigma: the true
+// noise standard deviation per output on the estimation record.
+bool add_measured_outputs(Rng& r, const ModelFile& truth, const Build& b, const Noise& noise, Records& rec,
+                          std::vector<double>& sigma) {
+  for (Recording* one : {&rec.est, &rec.val}) {
+    Eigen::MatrixXd y;
+    if (!simulate_outputs(truth, *one, y)) return false;
+    for (std::size_t j = 0; j < b.outputs.size(); ++j) {
+      const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
+      const double sd = std::sqrt((yj.array() - yj.mean()).square().mean());
+      const double s = std::max(noise.fraction[j] * sd, 1e-300);
+      one->add(b.outputs[j].second, add_noise(r, yj, noise.kind[j], s));
+      if (one == &rec.est) sigma.push_back(s);
+    }
+  }
+  return true;
+}
+
+// The nominal: effects left out, free parameters off by up to a factor 1.8, states measured
+// start from their first sample.
+ModelFile nominal_of(Rng& r, const Build& b, const std::string& time_col) {
+  std::vector<ModelParameter> params;
+  for (auto q : b.params) {
+    if (std::find(b.removed_params.begin(), b.removed_params.end(), q.name) != b.removed_params.end()) continue;
+    if (!q.fixed) q.value *= r.log_uniform(1 / 1.8, 1.8);
+    params.push_back(q);
+  }
+  std::vector<ModelState> states = b.states;
+  for (auto& s : states)
+    for (const auto& [sym, col] : b.outputs)
+      if (sym == s.name && r.chance(0.5)) s.initial_value.reset(), s.initial_column = col;
+  return model_of(b, b.eqs, b.sampled, b.outputs, states, b.removed, params, time_col);
+}
+
+std::string description(const Build& b, const Records& rec, const Noise& noise) {
+  std::ostringstream d;
+  d << b.family << ", N = " << rec.n << ", Ts = " << b.Ts << " s (" << std::round(rec.per_time_scale)
+    << " samples per time scale), " << rec.excitation_kind << " input, noise";
+  for (std::size_t j = 0; j < noise.kind.size(); ++j) {
+    std::ostringstream o;
+    o.precision(2);
+    o << noise.kind[j] << " " << 100 * noise.fraction[j] << " %";
+    d << " " << o.str();
+  }
+  return d.str();
+}
+
 }  // namespace
 
 std::vector<std::string> random_plant_families() {
@@ -680,237 +993,45 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     Build b;
     b.names = &names;
     b.family = options.family.empty() ? r.pick(random_plant_families()) : options.family;
-    if (b.family == "one_mass") one_mass(r, b);
-    else if (b.family == "two_mass") two_mass(r, b);
-    else if (b.family == "motor") motor(r, b);
-    else if (b.family == "thermal") thermal(r, b);
-    else if (b.family == "tanks") tanks(r, b);
-    else if (b.family == "position_loop") position_loop(r, b);
-    else throw InputError("random plant: unknown family \"" + b.family + "\"");
-    // Sampling: from about 6 to several hundred samples per dominant time scale.
-    const double per = r.log_uniform(6, 300);
-    b.Ts = b.period / per;
-    const int n = options.samples > 0 ? options.samples : r.integer(2500, 5000);
-    // Motors: the electrical pole must stay integrable (RK4) at the screening step.
-    const std::string time_col = names({"t", "time", "tt"});
-    const std::string excitation_kind =
-        r.pick(std::vector<std::string>{"steps", "steps", "prbs", "multisine", "noise", "few_steps", "sine"});
-    Recording est, val;
-    std::vector<double> tcol(static_cast<std::size_t>(n));
-    for (int k = 0; k < n; ++k) tcol[static_cast<std::size_t>(k)] = k * b.Ts;
-    for (Recording* rec : {&est, &val}) {
-      rec->add(time_col, tcol);
-      for (const auto& [sym, col] : b.inputs)
-        rec->add(col, excitation(r, excitation_kind, n, b.Ts, b.u_lo, b.u_hi, b.period));
-      for (const auto& [sym, col] : b.outputs) rec->add(col, std::vector<double>(static_cast<std::size_t>(n), 0.0));
-    }
-    // Effects: how many, which.
-    int count = options.effects;
-    if (count < 0) {
-      const double u = r.uniform(0, 1);
-      count = u < 0.3 ? 0 : u < 0.7 ? 1 : 2;
-    }
-    std::vector<std::string> avail = effects_for(b), drawn;
-    if (!options.effect.empty()) {
-      if (std::find(avail.begin(), avail.end(), options.effect) == avail.end()) {
-        if (!options.family.empty()) throw InputError("random plant: " + options.effect + " cannot enter a " + b.family + " plant");
-        continue;
-      }
-      drawn.push_back(options.effect);
-    }
-    auto clash = [](const std::string& a, const std::string& c) {
-      static const std::set<std::string> friction = {"coulomb_friction", "stribeck_friction", "quadratic_drag",
-                                                     "asymmetric_friction", "viscous_friction"};
-      static const std::set<std::string> sensor = {"output_saturation", "hysteresis", "absolute_value_sensor"};
-      return a == c || (friction.count(a) && friction.count(c)) || (sensor.count(a) && sensor.count(c)) ||
-             ((a == "sqrt_outflow") != (c == "sqrt_outflow") && (a == "state_saturation" || c == "state_saturation"));
-    };
-    while (static_cast<int>(drawn.size()) < count) {
-      const std::string e = r.pick(avail);
-      bool ok = true;
-      for (const auto& d : drawn) ok = ok && !clash(d, e);
-      if (ok) drawn.push_back(e);
-      else if (avail.size() < 3) break;
-    }
-    // The plant without effects: scales, and the nominal's structure.
-    const ModelFile clean = model_of(b, b.eqs, b.sampled, b.outputs, b.states, {}, b.params, time_col);
-    SimulationResult clean_sim;
-    try {
-      Simulator s(clean, est, {10});
-      clean_sim = s.simulate(s.parameter_values());
-    } catch (const std::exception&) {
-      continue;
-    }
-    {
-      // A plant that grows without bound is not a plant anyone identifies: the second half of every
-      // signal must stay within 100 x the first half's RMS.
-      bool bounded = clean_sim.values.allFinite();
-      for (Eigen::Index v = 0; bounded && v < clean_sim.values.cols(); ++v) {
-        const Eigen::Index h = clean_sim.values.rows() / 2;
-        const double first = clean_sim.values.col(v).head(h).norm(), second = clean_sim.values.col(v).tail(h).norm();
-        bounded = second <= 100 * first + 1e-300;
-      }
-      if (!bounded) continue;
-    }
-    const Scales sc = scales_of(clean_sim, b.Ts);
+    draw_family(r, b);
+    Records rec = draw_records(r, names, b, options);
+    const std::optional<std::vector<std::string>> drawn = draw_effect_names(r, b, options);
+    if (!drawn) continue;
+    SimulationResult clean;
+    if (!simulates_bounded(b, rec, clean)) continue;
+    const Scales sc = scales_of(clean, b.Ts);
     std::vector<Effect> effects;
-    for (const auto& e : drawn) effects.push_back(make_effect(r, b, e, sc));
-    if (std::find(drawn.begin(), drawn.end(), "viscous_friction") != drawn.end()) {
+    for (const auto& e : *drawn) effects.push_back(make_effect(r, b, e, sc));
+    if (std::find(drawn->begin(), drawn->end(), "viscous_friction") != drawn->end()) {
       const Velocity& vel = b.velocities.front();
       b.removed = {vel.damping + "*" + vel.v};
       b.removed_params = {vel.damping};
     }
-    // Noise levels first: every effect must move the outputs by several noise levels.
-    std::vector<double> noise_frac;
-    std::vector<std::string> noise_kind;
-    for (std::size_t j = 0; j < b.outputs.size(); ++j) {
-      noise_frac.push_back(r.log_uniform(0.002, 0.03));
-      noise_kind.push_back(r.pick(std::vector<std::string>{"white", "white", "coloured", "quantised"}));
-    }
-    const double max_frac = *std::max_element(noise_frac.begin(), noise_frac.end());
-    // Build the truth with the effects at knobs k; strength of effect i = RMS output deviation it
-    // causes (others present) / RMS of the output, largest over the outputs.
-    auto truth_with = [&](const std::vector<double>& knobs, int skip, std::vector<std::vector<std::pair<std::string, double>>>* vals) {
-      std::vector<Eq> eqs = b.eqs;
-      NamedTexts sampled = b.sampled, outputs = b.outputs;
-      std::vector<ModelState> states = b.states;
-      std::vector<ModelParameter> ps = b.params;
-      for (std::size_t i = 0; i < effects.size(); ++i) {
-        std::vector<std::pair<std::string, double>> v;
-        if (static_cast<int>(i) != skip) effects[i].apply(knobs[i], eqs, sampled, outputs, states, ps, v);
-        if (vals) vals->push_back(v);
-      }
-      // The truth has the damping the nominal leaves out; without the viscous effect it goes too.
-      std::vector<std::string> removed;
-      if (skip >= 0 && effects[static_cast<std::size_t>(skip)].name == "viscous_friction") removed = b.removed;
-      return model_of(b, eqs, sampled, outputs, states, removed, ps, time_col);
-    };
-    auto simulate = [&](const ModelFile& m, const Recording& rec, Eigen::MatrixXd& y) {
-      try {
-        Simulator s(m, rec, {10});
-        return s.simulate_outputs(s.parameter_values(), y);
-      } catch (const std::exception&) {
-        return false;
-      }
-    };
-    auto strength = [&](const std::vector<double>& knobs, std::size_t i) {
-      Eigen::MatrixXd y1, y0;
-      if (!simulate(truth_with(knobs, -1, nullptr), est, y1) || !simulate(truth_with(knobs, static_cast<int>(i), nullptr), est, y0))
-        return -1.0;
-      double s = 0;
-      for (Eigen::Index j = 0; j < y1.cols(); ++j) {
-        const double den = std::sqrt((y0.col(j).array() - y0.col(j).mean()).square().mean());
-        s = std::max(s, std::sqrt((y1.col(j) - y0.col(j)).array().square().mean()) / std::max(den, 1e-300));
-      }
-      return s;
-    };
+    const Noise noise = draw_noise(r, b.outputs.size());
+    const Truth truth_of(b, effects, rec.time_col);
     std::vector<double> knobs(effects.size(), 0.1), strengths(effects.size(), 0);
-    bool ok = true;
-    for (std::size_t i = 0; i < effects.size() && ok; ++i) {
-      const double target = r.log_uniform(std::max(0.04, 4 * max_frac), 0.4);
-      if (!effects[i].has_knob) {
-        strengths[i] = strength(knobs, i);
-        ok = strengths[i] >= std::max(0.03, 3 * max_frac) && strengths[i] <= 1.5;  // a mirror or a square-root law cannot be made weak
-        continue;
-      }
-      // Bisection on log(knob) for the drawn strength.
-      double lo = std::log(1e-4), hi = std::log(20.0);
-      for (int it = 0; it < 18; ++it) {
-        knobs[i] = std::exp(0.5 * (lo + hi));
-        const double s = strength(knobs, i);
-        if (s < 0 || s > target) hi = std::log(knobs[i]);
-        else lo = std::log(knobs[i]);
-      }
-      knobs[i] = std::exp(lo);
-      strengths[i] = strength(knobs, i);
-      ok = strengths[i] >= 0.6 * target && strengths[i] >= 3 * max_frac && strengths[i] <= 0.5;
-    }
-    if (!ok) continue;
-    std::vector<std::vector<std::pair<std::string, double>>> values;
-    const ModelFile truth = truth_with(knobs, -1, &values);
-    // Strong enough to matter: without it, the plant's own structure calibrated on the noise-free
-    // outputs (from the true values) still misses by at least 2 noise levels RMS on some output.
-    std::vector<double> detectability(effects.size(), 0.0);
-    {
-      Eigen::MatrixXd y;
-      if (!simulate(truth, est, y)) continue;
-      Recording clean_rec = est;
-      for (std::size_t j = 0; j < b.outputs.size(); ++j) {
-        const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
-        clean_rec.add(b.outputs[j].second, std::vector<double>(yj.data(), yj.data() + yj.size()));
-      }
-      for (std::size_t i = 0; i < effects.size() && ok; ++i) {
-        try {
-          Simulator s(truth_with(knobs, static_cast<int>(i), nullptr), clean_rec, {2});
-          const CalibrationResult cr = calibrate(s, s.parameter_values(), s.free_parameters());
-          for (Eigen::Index j = 0; cr.ok && j < y.cols(); ++j) {
-            const double sd = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean());
-            const double miss = std::sqrt((y.col(j) - cr.outputs.col(j)).array().square().mean());
-            detectability[i] = std::max(detectability[i], miss / std::max(noise_frac[static_cast<std::size_t>(j)] * sd, 1e-300));
-          }
-        } catch (const std::exception&) {
-        }
-        ok = detectability[i] >= 2.0;
-      }
-    }
-    if (!ok) continue;
-    // Measured records.
+    if (!set_strengths(r, truth_of, rec.est, noise, knobs, strengths)) continue;
+    std::vector<EffectValues> values;
+    const ModelFile truth = truth_of.with(knobs, -1, &values);
+    std::vector<double> detectability;
+    if (!detectable(b, truth_of, truth, rec.est, noise, knobs, detectability)) continue;
     SyntheticPlant p;
+    if (!add_measured_outputs(r, truth, b, noise, rec, p.noise_sigma)) continue;
     p.family = b.family;
     p.name = "random-" + std::to_string(seed);
-    std::vector<std::string> noise_desc;
-    bool blew = false;
-    for (Recording* rec : {&est, &val}) {
-      Eigen::MatrixXd y;
-      if (!simulate(truth, *rec, y)) {
-        blew = true;
-        break;
-      }
-      for (std::size_t j = 0; j < b.outputs.size(); ++j) {
-        const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
-        const double sd = std::sqrt((yj.array() - yj.mean()).square().mean());
-        const double sigma = std::max(noise_frac[j] * sd, 1e-300);
-        rec->add(b.outputs[j].second, add_noise(r, yj, noise_kind[j], sigma));
-        if (rec == &est) p.noise_sigma.push_back(sigma);
-      }
-    }
-    if (blew) continue;
-    for (std::size_t j = 0; j < b.outputs.size(); ++j)
-    {
-      std::ostringstream o;
-      o.precision(2);
-      o << noise_kind[j] << " " << 100 * noise_frac[j] << " %";
-      noise_desc.push_back(o.str());
-    }
-    // The nominal: effects left out, free parameters off by up to a factor 1.8, states measured
-    // start from their first sample.
-    std::vector<ModelParameter> nominal_params;
-    for (auto q : b.params) {
-      if (std::find(b.removed_params.begin(), b.removed_params.end(), q.name) != b.removed_params.end()) continue;
-      if (!q.fixed) q.value *= r.log_uniform(1 / 1.8, 1.8);
-      nominal_params.push_back(q);
-    }
-    std::vector<ModelState> nominal_states = b.states;
-    for (auto& s : nominal_states)
-      for (const auto& [sym, col] : b.outputs)
-        if (sym == s.name && r.chance(0.5)) s.initial_value.reset(), s.initial_column = col;
-    p.nominal = model_of(b, b.eqs, b.sampled, b.outputs, nominal_states, b.removed, nominal_params, time_col);
+    p.nominal = nominal_of(r, b, rec.time_col);
     p.nominal.name = "nominal " + b.family + " model (random plant " + std::to_string(seed) + ")";
     p.truth = truth;
     p.truth.name = "truth of random plant " + std::to_string(seed);
-    p.estimation = std::move(est);
-    p.validation = std::move(val);
+    p.estimation = std::move(rec.est);
+    p.validation = std::move(rec.val);
     p.estimation.source = p.name + " (estimation)";
     p.validation.source = p.name + " (validation)";
     for (std::size_t i = 0; i < effects.size(); ++i)
       p.effects.push_back({effects[i].name, effects[i].where, values[i], strengths[i], detectability[i]});
     p.true_effect = p.effects.empty() ? "none" : p.effects.front().name;
     if (!p.effects.empty()) p.true_values = p.effects.front().values;
-    std::ostringstream d;
-    d << b.family << ", N = " << n << ", Ts = " << b.Ts << " s (" << std::round(per) << " samples per time scale), "
-      << excitation_kind << " input, noise";
-    for (const auto& s : noise_desc) d << " " << s;
-    p.description = d.str();
+    p.description = description(b, rec, noise);
     return p;
   }
   throw InputError("random plant " + std::to_string(seed) + ": no admissible plant in 40 attempts");

@@ -778,14 +778,14 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const Eigen::VectorXd&
       const OrthantOutcome oc = solve_orthant(fps, scale, s, options, directions);
       absorb(s, oc);
       if (oc.status == OrthantStatus::empty) continue;
-      double scale = 1;
+      double magnitude = 1;  // of the orthant's extents: the zero tolerance is relative to it
       if (oc.status == OrthantStatus::feasible) {
         for (int j = 0; j < p; ++j) {
-          if (std::isfinite(oc.float_lo[j])) scale = std::max(scale, std::abs(oc.float_lo[j]));
-          if (std::isfinite(oc.float_hi[j])) scale = std::max(scale, std::abs(oc.float_hi[j]));
+          if (std::isfinite(oc.float_lo[j])) magnitude = std::max(magnitude, std::abs(oc.float_lo[j]));
+          if (std::isfinite(oc.float_hi[j])) magnitude = std::max(magnitude, std::abs(oc.float_hi[j]));
         }
       }
-      const double tol = options.zero_tolerance * scale;
+      const double tol = options.zero_tolerance * magnitude;
       for (int j = 0; j < p; ++j) {
         const int sign = s[static_cast<std::size_t>(j)];
         if (sign == 0) continue;  // free: no face at theta_j = 0

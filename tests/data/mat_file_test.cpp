@@ -209,7 +209,9 @@ TEST(MatFile, VectorsWrittenByMatioReadBackExactlyInEveryFormat) {
     ASSERT_EQ(r.rows(), 5);
     EXPECT_EQ(r.column("t"), (std::vector<double>{0.0, 0.1, 0.2, 0.30000000000000004, 0.4}));
     EXPECT_EQ(r.column("u"), (std::vector<double>{1, -2, 1e-310, 3, -1e300}));
-    if (c.format != MAT_FT_MAT4) EXPECT_EQ(r.column("n"), (std::vector<double>{7, -8, 9, 0, 2147483647}));
+    if (c.format != MAT_FT_MAT4) {
+      EXPECT_EQ(r.column("n"), (std::vector<double>{7, -8, 9, 0, 2147483647}));
+    }
   }
 }
 

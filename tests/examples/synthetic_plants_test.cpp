@@ -46,6 +46,8 @@ TEST(SyntheticPlants, EveryNameIsAPlantWithItsEffectOnlyInTheTruth) {
     const Eigen::VectorXd noise = truth.measured().col(0) - yt;
     const double measured_sd = std::sqrt((noise.array() - noise.mean()).square().mean());
     EXPECT_NEAR(measured_sd, p.noise_sigma[0], 0.1 * p.noise_sigma[0]);
-    if (!clean) EXPECT_GT((yt - yn).cwiseAbs().maxCoeff(), 0.0);
+    if (!clean) {
+      EXPECT_GT((yt - yn).cwiseAbs().maxCoeff(), 0.0);
+    }
   }
 }

@@ -63,7 +63,9 @@ TEST(Falsification, AGapBelowTheLpToleranceIsNeverCalledConsistent) {
     const ConsistencyVerdict v = sets::check_consistency(scalar({{1.0, 0.5}, {2.0 + gap, 0.5}}));
     EXPECT_NE(v.falsified, Falsified::no) << gap << ": " << v.message();
     EXPECT_FALSE(v.certified_consistent()) << gap;
-    if (v.falsified == Falsified::unknown) EXPECT_FALSE(v.reason.empty()) << gap;
+    if (v.falsified == Falsified::unknown) {
+      EXPECT_FALSE(v.reason.empty()) << gap;
+    }
   }
 }
 

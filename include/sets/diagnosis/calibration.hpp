@@ -31,13 +31,13 @@ struct CalibrationResult {
 };
 
 /// Per-output fits of simulated outputs against measured ones.
-std::vector<double> fits(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& simulated);
+std::vector<double> fits(const Eigen::Ref<const Eigen::MatrixXd>& measured, const Eigen::Ref<const Eigen::MatrixXd>& simulated);
 
 /// Calibrates `free` (indices into the model's parameters) starting from `start` (all parameters).
-CalibrationResult calibrate(const Simulator& sim, const Eigen::VectorXd& start, const std::vector<int>& free,
+CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& start, const std::vector<int>& free,
                             const CalibrationOptions& options = {});
 
 /// Simulates once and reports fits (no calibration); ok=false on blow-up.
-CalibrationResult evaluate(const Simulator& sim, const Eigen::VectorXd& parameters);
+CalibrationResult evaluate(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& parameters);
 
 }  // namespace sets

@@ -38,7 +38,7 @@ struct ResidualTests {
 
 /// Tests the residual of `sim`'s model at `parameters` (all parameters, model order) with
 /// `simulated` its simulation there; sigma: the noise level per output.
-ResidualTests test_residual(const Simulator& sim, const Eigen::VectorXd& parameters, const SimulationResult& simulated,
+ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& parameters, const SimulationResult& simulated,
                             const std::vector<double>& sigma);
 
 /// The bound factor c_N for N samples.

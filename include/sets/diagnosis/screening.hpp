@@ -66,7 +66,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
 
 /// Least squares min ||b - A x|| with some coefficients bounded (lo <= x <= hi; +-inf: free), by
 /// fixing violated ones at their bound and solving again (columns are scaled to unit norm first).
-Eigen::VectorXd bounded_least_squares(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& lo,
-                                      const Eigen::VectorXd& hi);
+Eigen::VectorXd bounded_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::VectorXd>& b,
+                                      const Eigen::Ref<const Eigen::VectorXd>& lo, const Eigen::Ref<const Eigen::VectorXd>& hi);
 
 }  // namespace sets

@@ -61,6 +61,8 @@ IntervalVector make_box(const Eigen::Ref<const Eigen::VectorXd>& lo,
 
 /// Outward-rounded enclosure of A x for interval or real operands (mixed products included).
 IntervalVector multiply(const IntervalMatrix& A, const IntervalVector& x);
+// `const MatrixXd&`, not Ref: an exact match beside the IntervalMatrix overload (a Ref would make
+// calls with a MatrixXd ambiguous, Eigen converting it to either).
 IntervalVector multiply(const Eigen::MatrixXd& A, const IntervalVector& x);
 
 /// Does the box contain the point? (Closed box, exact comparison of doubles.)

@@ -33,7 +33,8 @@ class CanonicalFps {
   /// its Y_t is listed in falsified_rows(). Throws InputError for sizes that do not match or a
   /// block with fewer rows than parameters.
   CanonicalFps(const IntervalMatrix& Psi, const IntervalVector& Y);
-  /// The same with exact regressors (no interval copy of the whole Psi is made).
+  /// The same with exact regressors (no interval copy of the whole Psi is made). `const MatrixXd&`,
+  /// not Ref: an exact match beside the IntervalMatrix overload (see multiply()).
   CanonicalFps(const Eigen::MatrixXd& Psi, const IntervalVector& Y);
   CanonicalFps() = default;  // no parameters, no rows
 
