@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <map>
+#include <memory>
 
 #include "diagnosis/stages.hpp"
 #include "sets/core/error.hpp"
@@ -61,39 +62,72 @@ std::vector<Eigen::VectorXd> effect_starts(const ModelFile& m, const std::vector
   return out;
 }
 
-// The global step: every start of effect_starts costed by one simulation (screening substeps), the
-// best `global_step_starts` calibrated (the search's budget) and refined with the final substeps. Returns
-// the optima that could be computed (final substeps).
-std::vector<CalibrationResult> other_optima(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
-                                            const Simulator& exact, const std::vector<int>& free, const CalibrationOptions& o) {
+// The global step's starts: every start of effect_starts costed by one simulation (screening
+// substeps, one worker job each, each worker with its own simulator), the best
+// `global_step_starts` kept in cost order (ties in start order, as serially).
+std::vector<Eigen::VectorXd> global_step_starts(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen) {
   const auto calibrated = static_cast<std::size_t>(std::max(0, c.options.global_step_starts));
   if (calibrated == 0) return {};
-  const Simulator fast(current, c.estimation, {c.options.screening_substeps});
-  std::vector<std::pair<double, Eigen::VectorXd>> costed;
-  for (const auto& p : effect_starts(current, chosen)) {
-    const CalibrationResult e = evaluate(fast, p);
-    if (e.ok && std::isfinite(e.cost)) costed.emplace_back(e.cost, p);
-  }
-  std::stable_sort(costed.begin(), costed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  costed.resize(std::min(costed.size(), calibrated));
-  std::vector<CalibrationResult> out(costed.size());
-  CalibrationOptions full = o;
-  full.max_evaluations = 80 * static_cast<int>(free.size() + 1);
+  const std::vector<Eigen::VectorXd> starts = effect_starts(current, chosen);
+  std::vector<CalibrationResult> costs(starts.size());
+  std::vector<std::exception_ptr> errors(starts.size());
   std::atomic<std::size_t> next{0};
   run_worker_threads(c.options.threads, [&] {
-    for (std::size_t i; (i = next++) < costed.size();) {
+    std::unique_ptr<Simulator> fast;
+    for (std::size_t i; (i = next++) < starts.size();) {
       try {
-        const CalibrationResult coarse = calibrate(fast, costed[i].second, free, full);
-        if (coarse.ok) out[i] = refine_with_final_substeps(c, exact, coarse.parameters, free, o);
-      } catch (const std::exception&) {
-        out[i] = CalibrationResult();  // a start that cannot be calibrated adds nothing
+        if (!fast) fast = std::make_unique<Simulator>(current, c.estimation, SimulationOptions{c.options.screening_substeps});
+        costs[i] = evaluate(*fast, starts[i]);
+      } catch (...) {
+        errors[i] = std::current_exception();
       }
     }
   });
-  std::vector<CalibrationResult> ok;
-  for (auto& r : out)
-    if (r.ok && std::isfinite(r.cost) && r.outputs.allFinite()) ok.push_back(std::move(r));
-  return ok;
+  std::vector<std::pair<double, Eigen::VectorXd>> costed;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    if (costs[i].ok && std::isfinite(costs[i].cost)) costed.emplace_back(costs[i].cost, starts[i]);
+  }
+  std::stable_sort(costed.begin(), costed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  costed.resize(std::min(costed.size(), calibrated));
+  std::vector<Eigen::VectorXd> out;
+  for (auto& [cost, p] : costed) out.push_back(std::move(p));
+  return out;
+}
+
+// The optima the estimate is chosen from: first the search's optimum refined with the final
+// substeps, then each start of the global step calibrated (the search's budget) and refined with
+// the final substeps. One worker job each, with simulators of its own (a Simulator holds its
+// expressions' state and is never shared between threads), results in this order whatever the
+// number of threads. A global-step start that cannot be calibrated adds nothing (not ok); the
+// search's optimum blowing up is an error.
+std::vector<CalibrationResult> optima_of(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
+                                         const std::vector<int>& free, const CalibrationOptions& o) {
+  const std::vector<Eigen::VectorXd> starts = global_step_starts(c, current, chosen);
+  CalibrationOptions full = o;
+  full.max_evaluations = 80 * static_cast<int>(free.size() + 1);
+  std::vector<CalibrationResult> out(starts.size() + 1);
+  std::exception_ptr search_error;
+  std::atomic<std::size_t> next{0};
+  run_worker_threads(c.options.threads, [&] {
+    for (std::size_t i; (i = next++) < out.size();) {
+      try {
+        const Simulator exact(current, c.estimation, {c.options.final_substeps});
+        if (i == 0) {
+          out[0] = refine_with_final_substeps(c, exact, exact.parameter_values(), free, o);
+          continue;
+        }
+        const Simulator fast(current, c.estimation, {c.options.screening_substeps});
+        const CalibrationResult coarse = calibrate(fast, starts[i - 1], free, full);
+        if (coarse.ok) out[i] = refine_with_final_substeps(c, exact, coarse.parameters, free, o);
+      } catch (...) {
+        if (i == 0) search_error = std::current_exception();
+        else out[i] = CalibrationResult();  // a start that cannot be calibrated adds nothing
+      }
+    }
+  });
+  if (search_error) std::rethrow_exception(search_error);
+  return out;
 }
 
 // Is the residual of another optimum inside the bound on the strips' samples? Then it is a point
@@ -130,11 +164,12 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const std::vector<int> fr = aug.free_parameters();
   CalibrationOptions o;
   o.scale = scales_for(current, fr, search.known_scales);
-  const auto from_search = refine_with_final_substeps(c, aug, aug.parameter_values(), fr, o);
-  if (!from_search.ok) throw NumericalError("the augmented model blows up with the full substeps");
   // The global step over the effects' parameters: the estimate is the best optimum found.
-  std::vector<CalibrationResult> optima = other_optima(c, current, chosen_candidates, aug, fr, o);
-  optima.insert(optima.begin(), from_search);
+  std::vector<CalibrationResult> optima;
+  for (auto& r : optima_of(c, current, chosen_candidates, fr, o))
+    if (optima.empty() || (r.ok && std::isfinite(r.cost) && r.outputs.allFinite())) optima.push_back(std::move(r));
+  const CalibrationResult& from_search = optima.front();
+  if (!from_search.ok) throw NumericalError("the augmented model blows up with the full substeps");
   std::size_t best = 0;
   for (std::size_t k = 1; k < optima.size(); ++k)
     if (optima[k].cost < optima[best].cost) best = k;
