@@ -159,6 +159,11 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
     }
     for (std::size_t k = 0; k < setups[i].from.size(); ++k) jobs.emplace_back(i, k);
   }
+  // Longest first (more free parameters: more simulations per Jacobian), so that the round does
+  // not end on one long job while the other thread idles; results stay indexed by job.
+  std::stable_sort(jobs.begin(), jobs.end(), [&](const auto& x, const auto& y) {
+    return setups[x.first].free.size() > setups[y.first].free.size();
+  });
   struct Outcome {
     CalibrationResult r;
     bool threw = false;

@@ -346,11 +346,19 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
         ee_base[c.equation] = f.built ? f.relative_residual : -1;
       }
   std::vector<ScreenedHypothesis> hs(candidates.size());
+  // Longest first (simulations: one per grid point and one per new parameter at each), so that
+  // the screening does not end on one long candidate while the other thread idles; results are
+  // kept by candidate index, so the order of the jobs changes nothing else.
+  std::vector<std::size_t> order(candidates.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto work = [&](std::size_t i) { return std::max<std::size_t>(1, candidates[i].grid.size()) * (1 + candidates[i].parameters.size()); };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return work(x) > work(y); });
   std::atomic<std::size_t> next{0};
   std::atomic<int> sims{0};
   run_worker_threads(o.threads, [&] {
     int my = 0;
-    for (std::size_t i; (i = next++) < candidates.size();) {
+    for (std::size_t j; (j = next++) < candidates.size();) {
+      const std::size_t i = order[j];
       try {
         hs[i] = screen_one(a, data, candidates[i], o, my);
       } catch (const std::exception& e) {
