@@ -188,7 +188,7 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   }
   // Linearised output error around the estimate (stage_helpers: the bounded-error strips), and
   // the same residuals, sub-sampled and normalised, for the statistical intervals.
-  const Eigen::MatrixXd J = output_jacobian(aug, r.parameters, fr, o.scale, r.outputs);
+  const Eigen::MatrixXd J = output_jacobian(current, est, opt.final_substeps, opt.threads, r.parameters, fr, o.scale, r.outputs);
   const Eigen::MatrixXd Ra = Y - r.outputs;
   OutputErrorIntervals oe = output_error_intervals(J, Ra, r.parameters, fr, o.scale);
   // Another optimum whose residual stays inside the same bound is a point of the same
@@ -200,7 +200,7 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
     const Eigen::MatrixXd Rk = Y - optima[k].outputs;
     if (!inside_bound(Rk, oe)) continue;
     try {
-      const Eigen::MatrixXd Jk = output_jacobian(aug, optima[k].parameters, fr, o.scale, optima[k].outputs);
+      const Eigen::MatrixXd Jk = output_jacobian(current, est, opt.final_substeps, opt.threads, optima[k].parameters, fr, o.scale, optima[k].outputs);
       const OutputErrorIntervals ok = output_error_intervals(Jk, Rk, optima[k].parameters, fr, o.scale, &oe.delta);
       if (!ok.built) continue;
       for (std::size_t i = 0; i < fr.size(); ++i) oe.lo[i] = std::min(oe.lo[i], ok.lo[i]), oe.hi[i] = std::max(oe.hi[i], ok.hi[i]);

@@ -1,12 +1,16 @@
 // Helpers shared by the stages of the diagnosis.
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <memory>
 #include <cmath>
 
 #include "diagnosis/stages.hpp"
 #include "sets/core/error.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
 #include "sets/numeric/interval.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace sets::diagnosis_stage {
 
@@ -48,22 +52,51 @@ std::vector<double> scales_for(const ModelFile& m, const std::vector<int>& free,
   return s;
 }
 
+namespace {
+
+// Column i of output_jacobian: the outputs' forward difference in free parameter i.
+void jacobian_column(const Simulator& sim, const Eigen::VectorXd& p, const std::vector<int>& free,
+                     const std::vector<double>& scale, const Eigen::MatrixXd& y0, std::size_t i, Eigen::MatrixXd& J) {
+  const Eigen::Index N = y0.rows(), ny = y0.cols();
+  Eigen::VectorXd q = p;
+  const double h = 1e-4 * scale[i];
+  q[free[i]] += h;
+  Eigen::MatrixXd y1;
+  if (!sim.simulate_outputs(q, y1)) {
+    q[free[i]] = p[free[i]] - h;
+    if (!sim.simulate_outputs(q, y1)) throw NumericalError("sensitivity simulation blew up");
+    y1 = 2 * y0 - y1;
+  }
+  for (Eigen::Index j = 0; j < ny; ++j) J.col(static_cast<Eigen::Index>(i)).segment(j * N, N) = (y1.col(j) - y0.col(j)) / h;
+}
+
+}  // namespace
+
 Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, const std::vector<int>& free,
                                 const std::vector<double>& scale, const Eigen::MatrixXd& y0) {
-  const Eigen::Index N = y0.rows(), ny = y0.cols();
-  Eigen::MatrixXd J(N * ny, static_cast<Eigen::Index>(free.size()));
-  for (std::size_t i = 0; i < free.size(); ++i) {
-    Eigen::VectorXd q = p;
-    const double h = 1e-4 * scale[i];
-    q[free[i]] += h;
-    Eigen::MatrixXd y1;
-    if (!sim.simulate_outputs(q, y1)) {
-      q[free[i]] = p[free[i]] - h;
-      if (!sim.simulate_outputs(q, y1)) throw NumericalError("sensitivity simulation blew up");
-      y1 = 2 * y0 - y1;
+  Eigen::MatrixXd J(y0.size(), static_cast<Eigen::Index>(free.size()));
+  for (std::size_t i = 0; i < free.size(); ++i) jacobian_column(sim, p, free, scale, y0, i, J);
+  return J;
+}
+
+Eigen::MatrixXd output_jacobian(const ModelFile& model, const Recording& data, int substeps, int threads, const Eigen::VectorXd& p,
+                                const std::vector<int>& free, const std::vector<double>& scale, const Eigen::MatrixXd& y0) {
+  Eigen::MatrixXd J(y0.size(), static_cast<Eigen::Index>(free.size()));
+  std::vector<std::exception_ptr> errors(free.size());
+  std::atomic<std::size_t> next{0};
+  run_worker_threads(threads, [&] {
+    std::unique_ptr<Simulator> sim;  // one per worker: a Simulator is never shared between threads
+    for (std::size_t i; (i = next++) < free.size();) {
+      try {
+        if (!sim) sim = std::make_unique<Simulator>(model, data, SimulationOptions{substeps});
+        jacobian_column(*sim, p, free, scale, y0, i, J);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
     }
-    for (Eigen::Index j = 0; j < ny; ++j) J.col(static_cast<Eigen::Index>(i)).segment(j * N, N) = (y1.col(j) - y0.col(j)) / h;
-  }
+  });
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
   return J;
 }
 

@@ -52,6 +52,10 @@ std::vector<double> scales_for(const ModelFile& m, const std::vector<int>& free,
 /// forward differences of 1e-4 of each scale (backward when the forward step blows up).
 Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, const std::vector<int>& free,
                                 const std::vector<double>& scale, const Eigen::MatrixXd& y0);
+/// The same, one column per worker job on `threads` threads, each worker with a simulator of
+/// `model` on `data` of its own (bit for bit the serial one).
+Eigen::MatrixXd output_jacobian(const ModelFile& model, const Recording& data, int substeps, int threads, const Eigen::VectorXd& p,
+                                const std::vector<int>& free, const std::vector<double>& scale, const Eigen::MatrixXd& y0);
 /// The optimum found with the screening substeps, calibrated again with the final ones (`exact`)
 /// when they differ: a model that fits to near the noise absorbs the coarse step's RK4 error in
 /// its parameters, so its fits at the final substeps would understate it (Silverbox, input

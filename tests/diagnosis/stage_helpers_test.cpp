@@ -61,6 +61,34 @@ TEST(StageHelpers, OutputJacobianIsTheSensitivityOfTheOutputs) {
   }
 }
 
+// The threaded Jacobian (one column per worker job, a simulator per worker) is the serial one bit
+// for bit on any number of threads, and its columns are not all equal (so a job that wrote the
+// wrong column would show).
+TEST(StageHelpers, ThreadedOutputJacobianIsTheSerialOneBitForBit) {
+  const ModelFile m = parse_model(R"json({"sample_time": 0.05, "inputs": {"u": "u"},
+    "parameters": {"a": 2.0, "b": 3.0, "c": 0.5}, "states": {"x": 0.0, "v": 0.0},
+    "derivatives": {"x": "v", "v": "-a*x - c*v + b*u - c*x^3"}, "outputs": {"x": "y", "v": "w"}})json", "m.json");
+  Recording r;
+  std::vector<double> u(80);
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = std::sin(0.3 * static_cast<double>(k)) + (k % 7 < 3 ? 0.5 : -0.5);
+  r.add("u", u);
+  r.add("y", std::vector<double>(80, 0.0));
+  r.add("w", std::vector<double>(80, 0.0));
+  const Simulator sim(m, r, {5});
+  const Eigen::VectorXd p = sim.parameter_values();
+  const Eigen::MatrixXd y0 = sim.simulate(p).outputs;
+  const std::vector<int> free = {0, 1, 2};
+  const std::vector<double> scale = {2.0, 3.0, 0.5};
+  const Eigen::MatrixXd serial = output_jacobian(sim, p, free, scale, y0);
+  ASSERT_EQ(serial.cols(), 3);
+  EXPECT_NE(serial.col(0), serial.col(1));
+  EXPECT_NE(serial.col(1), serial.col(2));
+  for (int threads : {1, 2, 3, 5}) {
+    const Eigen::MatrixXd threaded = output_jacobian(m, r, 5, threads, p, free, scale, y0);
+    EXPECT_TRUE(threaded == serial) << threads << " threads";
+  }
+}
+
 TEST(StageHelpers, OutputErrorIntervalsContainTheTruthOfALinearProblem) {
   // R = J (theta_true - estimate) + e with |e| <= 0.1: the strips hold theta_true when the
   // bound (1.5 x the largest |R|) covers the noise, which it does here.
