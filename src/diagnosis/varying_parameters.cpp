@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
+#include <optional>
 
 #include "diagnosis/stages.hpp"
 #include "sets/methods/tv_bound/tv_bound.hpp"
@@ -97,7 +99,9 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
     h.segment(o * m, m).setConstant(10.0 / (static_cast<double>(l) * peak));
   }
   const double eps0 = std::max(h.dot(Y.cwiseAbs().colwise().maxCoeff().transpose()), 1e-300);
-  for (int i = 0; i < q; ++i) {
+  // One parameter's estimate (l-inf, then sparse): independent of the others' (its own LPs), so
+  // one worker job each; collected in parameter order, so the result is the serial one.
+  auto estimate = [&](int i) -> std::optional<VaryingParameter> {
     const double sc = scale[static_cast<std::size_t>(i)];
     TvBoundData data;
     data.regression.zeta = Eigen::MatrixXd::Zero(S + 1, 1);
@@ -112,7 +116,7 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
     try {
       lin = linf_bound(data, lo);
     } catch (const std::exception&) {
-      continue;  // an estimate that cannot be computed is not reported
+      return std::nullopt;  // an estimate that cannot be computed is not reported
     }
     VaryingParameter vp;
     vp.name = model.parameters[static_cast<std::size_t>(free[static_cast<std::size_t>(i)])].name;
@@ -173,7 +177,23 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
     for (std::size_t e = 0; e < std::min<std::size_t>(3, events.size()); ++e)
       vp.when.emplace_back(time[static_cast<std::size_t>(a[static_cast<std::size_t>(events[e].second.first - 1)])],
                            time[static_cast<std::size_t>(a[static_cast<std::size_t>(events[e].second.second + 1)] - 1)]);
-    out.push_back(vp);
+    return vp;
+  };
+  std::vector<std::optional<VaryingParameter>> found(static_cast<std::size_t>(q));
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(q));
+  std::atomic<int> next_parameter{0};
+  run_worker_threads(threads, [&] {
+    for (int i; (i = next_parameter++) < q;) {
+      try {
+        found[static_cast<std::size_t>(i)] = estimate(i);
+      } catch (...) {
+        errors[static_cast<std::size_t>(i)] = std::current_exception();
+      }
+    }
+  });
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    if (found[i]) out.push_back(std::move(*found[i]));
   }
   std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.explained > y.explained; });
   return out;
