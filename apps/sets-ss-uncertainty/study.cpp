@@ -123,7 +123,7 @@ int monte_carlo(const Settings& st) {
   }
   std::cout << std::fixed << std::setprecision(2) << "\nTiming: " << r.seconds << " s for " << o.runs << " runs on "
             << o.threads << " threads" << (pui_runs ? " (with " + std::to_string(pui_runs) + " PUI computations)" : "")
-            << ", " << r.cpu_seconds << " s CPU\n";
+            << ", " << r.cpu_seconds << " s CPU (busiest thread " << r.busiest_thread_cpu_seconds << " s)\n";
 
   if (!st.json_path.empty()) {
     Json j;
@@ -143,6 +143,7 @@ int monte_carlo(const Settings& st) {
     }
     j["seconds"] = r.seconds;
     j["cpu_seconds"] = r.cpu_seconds;
+    j["busiest_thread_cpu_seconds"] = r.busiest_thread_cpu_seconds;
     j["settings"] = {{"seed", o.seed},          {"snr_db", o.snr_db},
                      {"past", o.past},          {"samples", o.samples},
                      {"threads", o.threads},    {"estimate_d", o.estimate_d},
