@@ -143,7 +143,6 @@ int monte_carlo(const Settings& st) {
     }
     j["seconds"] = r.seconds;
     j["cpu_seconds"] = r.cpu_seconds;
-    j["busiest_thread_cpu_seconds"] = r.busiest_thread_cpu_seconds;
     j["settings"] = {{"seed", o.seed},          {"snr_db", o.snr_db},
                      {"past", o.past},          {"samples", o.samples},
                      {"threads", o.threads},    {"estimate_d", o.estimate_d},
