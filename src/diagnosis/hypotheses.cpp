@@ -495,7 +495,7 @@ Box intervals_at_optimum(const Context& c, const HypothesisSearch& h, const Tria
 
 // Each trial against the acceptance rules, then each accepted richer law against its special
 // cases: the rules with the special case as baseline, and the data must exclude the special case
-// (the richer law's bounded-error interval of a parameter fixed on the way leaves out the fixed
+// (the richer law's output-error interval, linearised at its optimum, of a parameter fixed on the way leaves out the fixed
 // value: a richer law whose extra term could be zero fits better only by fitting what else the
 // model leaves out). Fills r.ok and r.beats.
 void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& noise, const AcceptanceRules& rules, Round& r) {
@@ -536,7 +536,7 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
         trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
       } else if (std::string why; !excludes(i, fixed, why)) {
         trials[i].accepted = false;
-        trials[i].not_beyond = j->cand.effect + " (bounded-error interval: " + why + ")";
+        trials[i].not_beyond = j->cand.effect + " (output-error interval linearised at its optimum: " + why + ")";
       } else {
         r.beats[i] += (r.beats[i].empty() ? "" : ", ") + j->cand.effect;
       }
