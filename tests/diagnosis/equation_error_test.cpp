@@ -12,16 +12,25 @@
 
 using namespace sets;
 
+namespace {
+
+// The Coulomb plant's nominal with the friction term and its free parameter Fc added.
+ModelFile with_coulomb_friction(ModelFile m) {
+  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
+  ModelParameter fc;
+  fc.name = "Fc";
+  m.parameters.push_back(fc);
+  return m;
+}
+
+}  // namespace
+
 // Equation-error PUIs of the Coulomb plant's force balance, measured at values a little off the
 // truth (as an estimate would be): every true parameter must lie in its interval, and the
 // parameters that enter nonlinearly or through prev() are refused with a reason.
 TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
-  ModelFile m = p.nominal;
-  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
-  ModelParameter fc;
-  fc.name = "Fc";
-  m.parameters.push_back(fc);
+  ModelFile m = with_coulomb_friction(p.nominal);
   const std::vector<std::pair<std::string, double>> truth{{"m", 1.0}, {"k", 4.0}, {"c", 0.8}, {"Fc", 0.3}};
   const std::vector<double> off{1.03, 3.9, 0.84, 0.28};
   for (std::size_t i = 0; i < truth.size(); ++i) m.parameter(truth[i].first)->value = off[i];
@@ -52,11 +61,7 @@ TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
 // interval regressors), so the cache can neither be ignored nor disagree unnoticed.
 TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
-  ModelFile m = p.nominal;
-  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
-  ModelParameter fc;
-  fc.name = "Fc";
-  m.parameters.push_back(fc);
+  ModelFile m = with_coulomb_friction(p.nominal);
   const int w = 20;
   const ColumnNoise noise = measured_noise(m, p.estimation);
   ASSERT_EQ(noise.size(), m.outputs.size());
