@@ -58,4 +58,6 @@
 #include "sets/diagnosis/physics_catalogue.hpp"
 
 #include "sets/examples/crane.hpp"
+#include "sets/examples/farah.hpp"
+#include "sets/examples/farah_study.hpp"
 #include "sets/examples/synthetic_plants.hpp"
