@@ -58,7 +58,7 @@ namespace {
 // integrals over the window (build).
 class EquationRegression {
  public:
-  EquationRegression(const ModelFile& model, const Recording& data, const std::string& state, const ColumnNoise* noise)
+  EquationRegression(const ModelFile& model, const Recording& data, const std::string& state, const ColumnNoise& noise)
       : model_(model), state_(state), sim_(model, data, {1}), N_(sim_.samples()), Ts_(sim_.sample_time()) {
     const std::string* f_text = model.derivative(state);
     if (!f_text) {
@@ -97,7 +97,7 @@ class EquationRegression {
   bool choose_order();
   bool resolve_symbols(const std::string& f_text);
   void compile(const std::string& f_text);
-  void estimate_noise_of_integrals(const ColumnNoise* noise);
+  void estimate_noise_of_integrals(const ColumnNoise& noise);
   Eigen::VectorXd integrated_derivative(int w) const;
   void bind_sample_values(int w);
   void set_sample(int j, int combo);
@@ -244,10 +244,10 @@ void EquationRegression::compile(const std::string& f_text) {
 
 // The noise of each differentiated state's measured integral, once for every window (only the
 // radius of the central difference depends on the window), or the caller's for its column.
-void EquationRegression::estimate_noise_of_integrals(const ColumnNoise* noise) {
+void EquationRegression::estimate_noise_of_integrals(const ColumnNoise& noise) {
   for (const auto& z : differentiated_) {
-    const auto known = noise ? noise->find(column_name_[derivative_of_[z]]) : ColumnNoise::const_iterator();
-    sigma_of_[z] = noise && known != noise->end() ? known->second : estimate_noise(measured_[derivative_of_[z]]).sigma;
+    const auto known = noise.find(column_name_[derivative_of_[z]]);
+    sigma_of_[z] = known != noise.end() ? known->second : estimate_noise(measured_[derivative_of_[z]]).sigma;
   }
 }
 
@@ -510,7 +510,7 @@ EquationErrorRegression EquationRegression::build(int w) {
 
 std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile& model, const Recording& data,
                                                                const std::string& state, const std::vector<int>& windows,
-                                                               const ColumnNoise* noise) {
+                                                               const ColumnNoise& noise) {
   EquationRegression regression(model, data, state, noise);
   if (!regression.problem().empty()) {
     EquationErrorRegression res;
@@ -604,7 +604,7 @@ EquationErrorResult equation_error_pui(const ModelFile& model, const Recording& 
 }
 
 EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window,
-                                    const ColumnNoise* noise) {
+                                    const ColumnNoise& noise) {
   EquationErrorFit fit;
   const int w = window > 0 ? window : std::clamp(data.rows() / 200, 4, 500);
   const EquationErrorRegression g = equation_error_regressions(model, data, state, {w}, noise).front();

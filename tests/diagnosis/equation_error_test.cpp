@@ -66,7 +66,7 @@ TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
   const ColumnNoise noise = measured_noise(m, p.estimation);
   ASSERT_EQ(noise.size(), m.outputs.size());
   const EquationErrorRegression inside = equation_error_regressions(m, p.estimation, "v", {w}).front();
-  const EquationErrorRegression passed = equation_error_regressions(m, p.estimation, "v", {w}, &noise).front();
+  const EquationErrorRegression passed = equation_error_regressions(m, p.estimation, "v", {w}, noise).front();
   ASSERT_TRUE(inside.built) << inside.note;
   ASSERT_TRUE(passed.built) << passed.note;
   ASSERT_EQ(inside.Phi.rows(), passed.Phi.rows());
@@ -74,7 +74,7 @@ TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
   int differ = 0;
   ColumnNoise louder = noise;
   for (auto& [column, sigma] : louder) sigma *= 10;
-  const EquationErrorRegression loud = equation_error_regressions(m, p.estimation, "v", {w}, &louder).front();
+  const EquationErrorRegression loud = equation_error_regressions(m, p.estimation, "v", {w}, louder).front();
   ASSERT_TRUE(loud.built) << loud.note;
   for (Eigen::Index i = 0; i < inside.Phi.rows(); ++i)
     for (Eigen::Index j = 0; j < inside.Phi.cols(); ++j) {
@@ -83,7 +83,7 @@ TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
       differ += loud.Phi(i, j).lower() != inside.Phi(i, j).lower() || loud.Phi(i, j).upper() != inside.Phi(i, j).upper();
     }
   EXPECT_GT(differ, 0);
-  const EquationErrorFit a = equation_error_fit(m, p.estimation, "v"), b = equation_error_fit(m, p.estimation, "v", 0, &noise);
+  const EquationErrorFit a = equation_error_fit(m, p.estimation, "v"), b = equation_error_fit(m, p.estimation, "v", 0, noise);
   ASSERT_TRUE(a.built && b.built);
   EXPECT_EQ(a.estimate, b.estimate);
   EXPECT_EQ(a.relative_residual, b.relative_residual);
