@@ -123,7 +123,7 @@ int monte_carlo(const Settings& st) {
   }
   std::cout << std::fixed << std::setprecision(2) << "\nTiming: " << r.seconds << " s for " << o.runs << " runs on "
             << o.threads << " threads" << (pui_runs ? " (with " + std::to_string(pui_runs) + " PUI computations)" : "")
-            << ", " << r.cpu_seconds << " s CPU\n";
+            << ", " << r.cpu_seconds << " s CPU (busiest thread " << r.busiest_thread_cpu_seconds << " s)\n";
 
   if (!st.json_path.empty()) {
     Json j;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <ctime>
 #include <exception>
+#include <mutex>
+#include <time.h>
 #include <utility>
 
 #include "sets/core/error.hpp"
@@ -141,15 +143,25 @@ RunResult one_run(const StudyOptions& st, const Setup& s, int run) {
   return r;
 }
 
+// CPU time of the calling thread, seconds.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // Runs 0 .. count-1 on the worker threads, taken from a shared counter. After a failure the
 // pending runs are skipped and the failure of the lowest run index is rethrown.
-std::vector<RunResult> run_all(const StudyOptions& o, const Setup& s) {
+std::vector<RunResult> run_all(const StudyOptions& o, const Setup& s, double& busiest_thread_cpu) {
   const int count = o.runs;
   std::vector<RunResult> results(static_cast<std::size_t>(count));
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(count));
   std::atomic<int> next{0};
   std::atomic<bool> failed{false};
+  std::mutex mu;
+  busiest_thread_cpu = 0;
   run_worker_threads(o.threads, [&] {
+    const double c0 = thread_cpu_seconds();
     for (int k; !failed && (k = next++) < count;) {
       try {
         results[static_cast<std::size_t>(k)] = one_run(o, s, k);
@@ -158,6 +170,9 @@ std::vector<RunResult> run_all(const StudyOptions& o, const Setup& s) {
         failed = true;
       }
     }
+    const double used = thread_cpu_seconds() - c0;
+    const std::lock_guard<std::mutex> lock(mu);
+    busiest_thread_cpu = std::max(busiest_thread_cpu, used);
   });
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
@@ -234,8 +249,8 @@ StudyResult study(const StudyOptions& options) {
   const Setup s = make_setup(options);
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();  // process CPU time (all threads)
-  const auto results = run_all(options, s);
   StudyResult out;
+  const auto results = run_all(options, s, out.busiest_thread_cpu_seconds);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   out.rows = s.rows;

@@ -41,6 +41,9 @@ TEST(FarahStudy, ThreadCountDoesNotChangeTheResult) {
     expect_same_counts(one.pairs[k].slice, three.pairs[k].slice, "slice");
   }
   EXPECT_EQ(one.estimate_fps_pui.runs, 4);
+  // The busiest worker's CPU time is part of the process' CPU time.
+  EXPECT_GT(three.busiest_thread_cpu_seconds, 0.0);
+  EXPECT_LE(three.busiest_thread_cpu_seconds, three.cpu_seconds + 1e-3);
 }
 
 // Table I and the ellipsoid's failure count are those of the runs made one by one with

@@ -71,6 +71,9 @@ struct StudyResult {
   Eigen::VectorXd guaranteed_pui_halfwidth;  // mean over the runs with PUIs
   Eigen::VectorXd mean_state_radius;     // mean radius of the state enclosures, per state
   double seconds = 0, cpu_seconds = 0;   // of the runs (wall; CPU of the process, all threads)
+  /// The most CPU time one worker thread used: the wall time of the runs when every worker has a
+  /// core of its own (a load-independent reading of how the work is shared out).
+  double busiest_thread_cpu_seconds = 0;
 };
 
 /// The study on farah::system(). Throws InputError for options it cannot use (naming the field),

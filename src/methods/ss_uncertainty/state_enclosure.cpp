@@ -40,8 +40,11 @@ struct VerifiedGram {
 
 VerifiedGram verify_gram(const Eigen::MatrixXd& Z) {
   const Eigen::Index M = Z.rows(), c = Z.cols();
-  const Eigen::MatrixXd R = Z.transpose() * Z;
-  const Eigen::LLT<Eigen::MatrixXd> llt(R);
+  // Only the lower triangle of fl(Z^T Z) is read (LLT, D below): a symmetric rank update computes
+  // half the products. The error bound below holds for any order of summation.
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(c, c);
+  R.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
+  const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(R);
   if (llt.info() != Eigen::Success)
     throw InputError("guaranteed set: the step-1 regressor Z^T Z is not positive definite (inputs not exciting)");
   const Eigen::MatrixXd L = llt.matrixL();
