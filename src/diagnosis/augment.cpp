@@ -107,6 +107,19 @@ bool inside_bound(const Eigen::MatrixXd& R, const OutputErrorIntervals& oe) {
 
 }  // namespace
 
+// A meet is guaranteed only if every set met is: the equation-error PUI is (under its bound, every
+// end certified), the output-error PUI linearised at the estimate is not (the nonlinear model's
+// bounded-error set need not lie inside the linearised one; e.g. a threshold law or another basin),
+// nor is the statistical interval. So only the first cuts the declared [min, max]; the others
+// stay beside it as estimates.
+void set_bounded_error_interval(EffectParameter& ep, double min, double max) {
+  ep.lo = min;
+  ep.hi = max;
+  if (!ep.has_ee || !ep.ee_certified) return;
+  ep.lo = std::max(ep.lo, ep.ee_lo);
+  ep.hi = std::min(ep.hi, ep.ee_hi);
+}
+
 void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch& search, Diagnosis& d) {
   if (d.effects.empty()) {
     d.augmented = d.nominal;
@@ -186,8 +199,8 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const std::vector<double>& oe_delta = oe.delta;
   const bool have_pui = oe.built;
   d.bound_note +=
-      "; PUIs: strips of the output error linearised at the estimate (every " + std::to_string(stride) +
-      "th sample), bound per output = 1.5 x the largest |residual| of the augmented model there";
+      "; output-error PUIs (estimates: linearised at the estimate, they never cut the bounded-error interval): strips every " +
+      std::to_string(stride) + "th sample, bound per output = 1.5 x the largest |residual| of the augmented model there";
   if (!have_pui) d.bound_note += "; " + oe.note;
   if (components > 1)
     d.bound_note += "; " + std::to_string(components) +
@@ -219,30 +232,26 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
         if (current.parameters[static_cast<std::size_t>(fr[i])].name != pn) continue;
         const auto ii = static_cast<Eigen::Index>(i);
         ep.estimate = r.parameters[fr[i]];
-        // The parameter's own bounds (min/max) hold too, so the interval is cut to them.
+        // The parameter's own bounds (min/max) hold too, so every interval is cut to them.
         const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
-        double oe_lo = -inf, oe_hi = inf;
-        if (have_pui) oe_lo = oe.lo[i], oe_hi = oe.hi[i];
-        ep.lo = ep.oe_lo = std::max(oe_lo, mp.min);
-        ep.hi = ep.oe_hi = std::min(oe_hi, mp.max);
+        ep.estimate_oe_lo = std::max(have_pui ? oe.lo[i] : -inf, mp.min);
+        ep.estimate_oe_hi = std::min(have_pui ? oe.hi[i] : inf, mp.max);
         const auto ee = ee_results.find(chosen_candidates[k].equation);
         if (ee != ee_results.end() && ee->second.built)
           for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
             if (ee->second.parameters[static_cast<std::size_t>(c)] == pn) {
               ep.has_ee = true;
+              ep.ee_certified = ee->second.guaranteed;
               ep.ee_delta = ee->second.delta;
               ep.ee_lo = std::max(ee->second.box[c].lower(), mp.min);
               ep.ee_hi = std::min(ee->second.box[c].upper(), mp.max);
-              // Each set holds the truth under its own bound, so under both the truth lies in
-              // their intersection. Disjoint sets mean one bound is violated: then the hull.
-              const bool meet = ep.ee_lo <= ep.oe_hi && ep.oe_lo <= ep.ee_hi;
-              ep.lo = meet ? std::max(ep.ee_lo, ep.oe_lo) : std::min(ep.ee_lo, ep.oe_lo);
-              ep.hi = meet ? std::min(ep.ee_hi, ep.oe_hi) : std::max(ep.ee_hi, ep.oe_hi);
-              if (!meet) d.bound_note += "; the equation-error and output-error intervals of " + pn + " are disjoint (one bound is violated): their hull is reported";
             }
+        set_bounded_error_interval(ep, mp.min, mp.max);
+        if (ep.has_ee && (ep.estimate_oe_hi < ep.ee_lo || ep.ee_hi < ep.estimate_oe_lo))
+          d.bound_note += "; the linearised output-error estimate of " + pn + " lies outside its equation-error PUI";
         const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
-        ep.stat_lo = ep.estimate - 1.96 * sd;
-        ep.stat_hi = ep.estimate + 1.96 * sd;
+        ep.estimate_stat_lo = ep.estimate - 1.96 * sd;
+        ep.estimate_stat_hi = ep.estimate + 1.96 * sd;
       }
       d.effects[k].parameters.push_back(ep);
     }

@@ -346,9 +346,326 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   return out;
 }
 
+// ---- one round of the search, stage by stage
+
+// What one round of the greedy search carries from stage to stage.
+struct Round {
+  int index = 0;
+  SimulationResult current_simulation;  // of the current model (the special cases are built on it)
+  Screening screening;
+  std::vector<const ScreenedHypothesis*> list;  // the shortlist, refined
+  std::vector<Trial> trials;                    // [0]: the null hypothesis; [i]: list[i - 1]
+  double cost_cur = 1e300, cost_cur_val = kNaN;  // the baseline every hypothesis must beat
+  std::vector<std::size_t> ok;                   // trials that pass every rule
+  std::map<std::size_t, std::string> beats;      // a richer law kept: the special cases it beat
+};
+
+AcceptanceRules rules_of(const DiagnosisOptions& opt) {
+  AcceptanceRules rules;
+  rules.min_gain = opt.min_cost_reduction;
+  rules.min_own_term = opt.min_cost_reduction;
+  rules.min_validation_gain = opt.min_validation_reduction;
+  return rules;
+}
+
+// Every catalogue hypothesis on the current model screened by least squares; the shortlist.
+void screen_round(const Context& c, const HypothesisSearch& h, const std::vector<std::string>& chosen,
+                  const std::vector<double>& bound, Round& r, Diagnosis& d) {
+  const DiagnosisOptions& opt = c.options;
+  Simulator cur_sim(h.current, c.estimation, {opt.screening_substeps});
+  r.current_simulation = cur_sim.simulate(values_of(h.current));
+  const std::vector<Candidate> cands = generate_candidates(h.current, r.current_simulation, c.estimation, excluded_by(chosen));
+  c.say("round " + std::to_string(r.index + 1) + ": screening " + std::to_string(cands.size()) + " hypotheses by least squares");
+  ScreeningOptions so;
+  so.substeps = opt.screening_substeps;
+  so.threads = opt.threads;
+  so.sparsity_tolerance = opt.sparsity_tolerance;
+  so.noise_bound = bound;
+  r.screening = screen_hypotheses(h.current, c.estimation, cands, so);
+  d.hypotheses_screened += static_cast<int>(cands.size());
+  r.list = shortlist(r.screening, opt.refine);
+}
+
+// The shortlist refined by output error beside the null hypothesis (the current model calibrated
+// with the same budget: a hypothesis must beat it, so that a better optimum of the old parameters
+// is not credited to a new effect). Sets the baseline; h.current takes the null's optimum.
+void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d) {
+  std::string names;
+  for (const auto* s : r.list) names += (names.empty() ? "" : ", ") + s->candidate.effect + " (" + s->candidate.equation + ")";
+  c.say("  refining by output error: " + names);
+  Candidate null;
+  null.model = h.current;
+  std::vector<ToRefine> to_refine{{&null, {values_of(h.current)}}};
+  for (const auto* l : r.list) to_refine.push_back({&l->candidate, l->starts});
+  r.trials = refine(c, to_refine, h.known_scales);
+  c.say("  refined; judging them by the acceptance rules");
+  for (std::size_t i = 1; i < r.trials.size(); ++i) r.trials[i].screening_gain = r.list[i - 1]->gain;
+  d.hypotheses_refined += static_cast<int>(r.list.size());
+  if (r.trials.front().ok) {
+    r.cost_cur = r.trials.front().cost;
+    r.cost_cur_val = r.trials.front().cost_val;
+    h.current = r.trials.front().model;
+  }
+  // A hypothesis whose calibration merely found a better optimum of the old parameters (its own
+  // term switched off fits as well) shows a better baseline, not an effect.
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const auto& t = r.trials[i];
+    if (t.ok && t.cand.parts.empty() && std::isfinite(t.cost_neutral) && t.cost_neutral < r.cost_cur &&
+        (!c.validation || t.cost_neutral_val < 1e299)) {
+      r.cost_cur = t.cost_neutral;
+      r.cost_cur_val = t.cost_neutral_val;
+      for (auto& q : h.current.parameters)
+        if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
+    }
+  }
+}
+
+HypothesisEvidence evidence_of(const Round& r, const NoiseFloor& noise, const Trial& t) {
+  HypothesisEvidence e;
+  e.cost_null = r.cost_cur;
+  e.cost = t.cost;
+  e.cost_neutral = t.cost_neutral;
+  e.cost_null_validation = r.cost_cur_val;
+  e.cost_validation = t.cost_val;
+  e.noise_cost = noise.cost;
+  return e;
+}
+
+// Nested hypotheses: a richer law is judged against each special case of it that was calibrated,
+// by the same rules with that special case as the baseline (its extra parameters must remove the
+// share of misfit the rules ask, on estimation and validation, and more than the noise). The
+// switch-off rule does not apply: the special case, calibrated, is the richer law with its extra
+// terms switched off and every other parameter free.
+HypothesisEvidence against(const Round& r, const NoiseFloor& noise, const Trial& richer, const Trial& special) {
+  HypothesisEvidence e = evidence_of(r, noise, richer);
+  e.cost_null = special.cost;
+  e.cost_null_validation = special.cost_val;
+  e.cost_neutral = kNaN;
+  return e;
+}
+
+// The special cases of an accepted law that were not calibrated in this round are, as baselines
+// of the nested rule only.
+std::vector<Trial> uncalibrated_special_cases(const Context& c, const HypothesisSearch& h, const Round& r) {
+  std::vector<Candidate> extra;
+  std::vector<const Candidate*> calibrated;
+  for (std::size_t j = 1; j < r.trials.size(); ++j)
+    if (r.trials[j].ok) calibrated.push_back(&r.trials[j].cand);
+  for (std::size_t i = 1; i < r.trials.size(); ++i)
+    if (r.trials[i].accepted)
+      for (auto& k : missing_special_cases(c, h.current, r.current_simulation, r.trials[i].cand, calibrated)) {
+        bool dup = false;
+        for (const auto& x : extra) dup = dup || (x.effect == k.effect && x.equation == k.equation);
+        if (!dup) extra.push_back(std::move(k));
+      }
+  std::vector<ToRefine> extra_to_refine;
+  for (const auto& e : extra) extra_to_refine.push_back({&e, {values_of(e.model)}});
+  return refine(c, extra_to_refine, h.known_scales);
+}
+
+using Box = std::map<std::string, std::array<double, 3>>;  // parameter -> estimate, lo, hi
+
+// A law's output-error intervals at its optimum, as stage 4 computes them: the calibration
+// continued (a second budget: a rough cost such as Stribeck's stops short of it), then refined
+// with the final substeps. Empty when they cannot be built (then nothing is excluded).
+Box intervals_at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t) {
+  const DiagnosisOptions& opt = c.options;
+  Box box;
+  try {
+    Simulator fast(t.model, c.estimation, {opt.screening_substeps}), s(t.model, c.estimation, {opt.final_substeps});
+    const std::vector<int> fr = s.free_parameters();
+    auto ks = h.known_scales;
+    for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) ks.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
+    CalibrationOptions o;
+    o.scale = scales_for(t.model, fr, ks);
+    o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
+    const CalibrationResult further = calibrate(fast, values_of(t.model), fr, o);
+    const CalibrationResult r =
+        refine_with_final_substeps(c, s, further.ok && further.cost < t.cost ? further.parameters : values_of(t.model), fr, o);
+    if (!r.ok) throw NumericalError("the law blows up with the final substeps");
+    const Eigen::MatrixXd J = output_jacobian(s, r.parameters, fr, o.scale, r.outputs);
+    const OutputErrorIntervals oe = output_error_intervals(J, s.measured() - r.outputs, r.parameters, fr, o.scale);
+    for (std::size_t k = 0; oe.built && k < fr.size(); ++k)
+      box[t.model.parameters[static_cast<std::size_t>(fr[k])].name] = {r.parameters[fr[k]], oe.lo[k], oe.hi[k]};
+  } catch (const std::exception&) {
+    box.clear();  // no interval: the special case is not excluded
+  }
+  return box;
+}
+
+// Each trial against the acceptance rules, then each accepted richer law against its special
+// cases: the rules with the special case as baseline, and the data must exclude the special case
+// (the richer law's output-error interval, linearised at its optimum, of a parameter fixed on the way leaves out the fixed
+// value: a richer law whose extra term could be zero fits better only by fitting what else the
+// model leaves out). Fills r.ok and r.beats.
+void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& noise, const AcceptanceRules& rules, Round& r) {
+  auto& trials = r.trials;
+  for (std::size_t i = 1; i < trials.size(); ++i) {
+    if (!trials[i].ok) continue;
+    trials[i].rules = check_rules(evidence_of(r, noise, trials[i]), rules);
+    trials[i].accepted = passes(trials[i].rules);
+  }
+  const std::vector<Trial> baselines = uncalibrated_special_cases(c, h, r);
+  std::vector<const Trial*> special_cases;
+  for (std::size_t j = 1; j < trials.size(); ++j)
+    if (trials[j].ok) special_cases.push_back(&trials[j]);
+  for (const auto& b : baselines)
+    if (b.ok) special_cases.push_back(&b);
+  std::map<std::size_t, Box> intervals;
+  auto interval_of = [&](std::size_t i, const std::string& name) -> std::array<double, 3> {
+    if (!intervals.count(i)) intervals[i] = intervals_at_optimum(c, h, trials[i]);
+    const auto& box = intervals[i];
+    const auto it = box.find(name);
+    return it == box.end() ? std::array<double, 3>{kNaN, -inf, inf} : it->second;
+  };
+  auto excludes = [&](std::size_t i, const Fixed& fixed, std::string& why) {
+    if (fixed.empty()) return true;  // reached by equalities only: the rules alone decide
+    for (const auto& [name, value] : fixed) {
+      const auto [estimate, lo, hi] = interval_of(i, name);
+      if (value < lo || value > hi) return true;
+      why += (why.empty() ? "" : ", ") + name + " = " + fmt(estimate) + " in [" + fmt(lo) + ", " + fmt(hi) + "] holds " + fmt(value);
+    }
+    return false;
+  };
+  for (std::size_t i = 1; i < trials.size(); ++i) {
+    for (const Trial* j : special_cases) {
+      Fixed fixed;
+      if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
+      if (!passes(check_rules(against(r, noise, trials[i], *j), rules))) {
+        trials[i].accepted = false;
+        trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
+      } else if (std::string why; !excludes(i, fixed, why)) {
+        trials[i].accepted = false;
+        trials[i].not_beyond = j->cand.effect + " (output-error interval linearised at its optimum: " + why + ")";
+      } else {
+        r.beats[i] += (r.beats[i].empty() ? "" : ", ") + j->cand.effect;
+      }
+    }
+    if (trials[i].accepted) r.ok.push_back(i);
+  }
+}
+
+// One progress line per refined hypothesis.
+void say_round(const Context& c, const Round& r) {
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    std::ostringstream line;
+    line << "    " << r.list[i - 1]->candidate.effect << " (" << r.list[i - 1]->candidate.equation << "): ";
+    if (!t.ok) line << "could not be calibrated";
+    else {
+      line << "misfit " << fixed1(100 * t.cost / std::max(r.cost_cur, 1e-300)) << " % of the current model's";
+      if (c.validation) line << ", validation " << fixed1(100 * t.cost_val / std::max(r.cost_cur_val, 1e-300)) << " %";
+      line << (t.accepted             ? ", passes every rule"
+               : t.not_beyond.empty() ? ", fails a rule"
+                                      : ", not beyond its special case " + t.not_beyond);
+    }
+    c.say(line.str());
+  }
+}
+
+// The sparsest explanation among the accepted: misfit (validation when there is one) x
+// tolerance^parameters; `best` is the best misfit. Between nested hypotheses the rules decide,
+// not the parameter count: an accepted richer law has passed them against the special case picked.
+std::pair<std::size_t, std::size_t> pick_sparsest(const Context& c, const Round& r) {
+  const auto& trials = r.trials;
+  auto judged = [&](std::size_t i) { return c.validation ? trials[i].cost_val : trials[i].cost; };
+  auto score = [&](std::size_t i) {
+    int p = static_cast<int>(trials[i].cand.parameters.size());
+    for (const auto& part : parts_of(trials[i].cand)) p += part.effect == "time_delay" ? 1 : 0;
+    return judged(i) * std::pow(c.options.sparsity_tolerance, p);
+  };
+  std::size_t pick = r.ok.front(), best = r.ok.front();
+  for (std::size_t i : r.ok) {
+    if (score(i) < score(pick)) pick = i;
+    if (judged(i) < judged(best)) best = i;
+  }
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (std::size_t i : r.ok)
+      if (nests(trials[i].cand, trials[pick].cand)) {
+        pick = i;
+        moved = true;
+        break;
+      }
+  }
+  return {pick, best};
+}
+
+// A delay picked: its number of samples refined; the refined delay must pass the rules too.
+void refine_picked_delay(const Context& c, const HypothesisSearch& h, const std::vector<double>& bound, const NoiseFloor& noise,
+                         const AcceptanceRules& rules, Round& r, std::size_t pick) {
+  Trial& picked = r.trials[pick];
+  const Candidate better = best_delay(c, h.current, picked.cand, bound);
+  if (better.delay_samples == picked.cand.delay_samples) return;
+  Trial t = refine(c, better, {values_of(better.model)}, h.known_scales);
+  if (!t.ok) return;
+  t.rules = check_rules(evidence_of(r, noise, t), rules);
+  t.screening_gain = picked.screening_gain;
+  if (passes(t.rules) && (c.validation ? t.cost_val <= picked.cost_val : t.cost <= picked.cost)) picked = t;
+}
+
+// The picked hypothesis's effects added to the diagnosis (two at once: each with its own share of
+// the misfit, the larger first) and to the search.
+void record_pick(const Context& c, const Round& r, std::size_t pick, std::size_t best, HypothesisSearch& h,
+                 std::vector<std::string>& chosen, Diagnosis& d) {
+  const Trial& t = r.trials[pick];
+  const std::vector<Candidate> parts = parts_of(t.cand);
+  std::vector<std::size_t> order(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) order[k] = k;
+  auto own_share = [&](std::size_t k) {
+    const double off = t.part_neutral.empty() ? t.cost_neutral : t.part_neutral[k];
+    return std::isfinite(off) && off > 0 ? (off - t.cost) / off : 0.0;
+  };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return own_share(a) > own_share(b); });
+  for (std::size_t k : order) {
+    const Candidate& part = parts[k];
+    DiagnosedEffect e;
+    e.name = part.effect;
+    e.equation = part.equation;
+    e.term = part.term;
+    e.delay_samples = part.delay_samples;
+    if (const auto* pe = find_effect(e.name)) e.placement = pe->placement;
+    e.rules = t.rules;
+    for (auto& rule : e.rules)
+      if (rule.name == "own_term" && !t.part_neutral.empty()) {
+        rule.value = own_share(k);
+        rule.applies = std::isfinite(t.part_neutral[k]);
+        rule.passed = !rule.applies || rule.value >= rule.threshold;
+      }
+    e.screening_gain = t.screening_gain;
+    e.cost_reduction_estimation = t.rules[0].value;
+    e.cost_reduction_validation = t.rules[3].applies ? t.rules[3].value : 0;
+    std::ostringstream ev;
+    ev << "adding " << part.term << " to " << part.equation;
+    if (parts.size() > 1) ev << " (together with " << parts[1 - k].effect << " in " << parts[1 - k].equation << ")";
+    ev << " removes " << fixed1(100 * e.cost_reduction_estimation) << " % of the squared misfit on the estimation record";
+    if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
+    ev << " (screened " << r.screening.ranked.size() << " hypotheses, refined " << r.list.size() << ", " << r.ok.size()
+       << " passed every rule";
+    if (pick != best) ev << "; preferred to " << r.trials[best].cand.effect << " as the sparser explanation";
+    if (r.beats.count(pick)) ev << "; preferred to " << r.beats.at(pick) << ", its special case, by the same rules";
+    ev << ")";
+    if (r.index == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
+    e.evidence = ev.str();
+    c.say("  found " + e.name + " in " + e.equation);
+    for (std::size_t q = 0; q < part.parameters.size(); ++q) h.known_scales.emplace_back(part.parameters[q], part.scales[q]);
+    d.effects.push_back(e);
+    chosen.push_back(part.effect);
+    h.chosen.push_back(part);
+  }
+  h.current = t.model;
+}
+
+bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise) {
+  Simulator s(m, c.estimation, {c.options.screening_substeps});
+  const SimulationResult r = s.simulate(values_of(m));
+  return test_residual(s, values_of(m), r, noise.sigma).within_noise();
+}
+
 }  // namespace
 
 HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
+  (void)nominal;
   const DiagnosisOptions& opt = c.options;
   HypothesisSearch h;
   h.current = d.nominal;
@@ -358,273 +675,22 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     d.nothing_missing = true;
     return h;
   }
-  AcceptanceRules rules;
-  rules.min_gain = opt.min_cost_reduction;
-  rules.min_own_term = opt.min_cost_reduction;
-  rules.min_validation_gain = opt.min_validation_reduction;
+  const AcceptanceRules rules = rules_of(opt);
   std::vector<double> bound;
   for (double s : noise.sigma) bound.push_back(noise_bound_factor(c.exact.samples()) * s);
-  (void)nominal;
   for (int round = 0; round < opt.max_effects; ++round) {
-    Simulator cur_sim(h.current, c.estimation, {opt.screening_substeps});
-    const SimulationResult cur_res = cur_sim.simulate(values_of(h.current));
-    const std::vector<Candidate> cands = generate_candidates(h.current, cur_res, c.estimation, excluded_by(chosen));
-    c.say("round " + std::to_string(round + 1) + ": screening " + std::to_string(cands.size()) + " hypotheses by least squares");
-    ScreeningOptions so;
-    so.substeps = opt.screening_substeps;
-    so.threads = opt.threads;
-    so.sparsity_tolerance = opt.sparsity_tolerance;
-    so.noise_bound = bound;
-    const Screening screening = screen_hypotheses(h.current, c.estimation, cands, so);
-    d.hypotheses_screened += static_cast<int>(cands.size());
-    const std::vector<const ScreenedHypothesis*> list = shortlist(screening, opt.refine);
-    std::string names;
-    for (const auto* s : list) names += (names.empty() ? "" : ", ") + s->candidate.effect + " (" + s->candidate.equation + ")";
-    c.say("  refining by output error: " + names);
-    // The null hypothesis: the current model calibrated with the same budget. A hypothesis must
-    // beat it, so that a better optimum of the old parameters is not credited to a new effect.
-    Candidate null;
-    null.model = h.current;
-    std::vector<ToRefine> to_refine{{&null, {values_of(h.current)}}};
-    for (const auto* l : list) to_refine.push_back({&l->candidate, l->starts});
-    std::vector<Trial> trials = refine(c, to_refine, h.known_scales);
-    c.say("  refined; judging them by the acceptance rules");
-    for (std::size_t i = 1; i < trials.size(); ++i) trials[i].screening_gain = list[i - 1]->gain;
-    d.hypotheses_refined += static_cast<int>(list.size());
-    double cost_cur = 1e300, cost_cur_val = kNaN;
-    if (trials.front().ok) {
-      cost_cur = trials.front().cost;
-      cost_cur_val = trials.front().cost_val;
-      h.current = trials.front().model;
-    }
-    // A hypothesis whose calibration merely found a better optimum of the old parameters (its own
-    // term switched off fits as well) shows a better baseline, not an effect.
-    for (std::size_t i = 1; i < trials.size(); ++i) {
-      const auto& t = trials[i];
-      if (t.ok && t.cand.parts.empty() && std::isfinite(t.cost_neutral) && t.cost_neutral < cost_cur &&
-          (!c.validation || t.cost_neutral_val < 1e299)) {
-        cost_cur = t.cost_neutral;
-        cost_cur_val = t.cost_neutral_val;
-        for (auto& q : h.current.parameters)
-          if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
-      }
-    }
-    auto evidence = [&](const Trial& t) {
-      HypothesisEvidence e;
-      e.cost_null = cost_cur;
-      e.cost = t.cost;
-      e.cost_neutral = t.cost_neutral;
-      e.cost_null_validation = cost_cur_val;
-      e.cost_validation = t.cost_val;
-      e.noise_cost = noise.cost;
-      return e;
-    };
-    // Nested hypotheses: a richer law is judged against each special case of it that was
-    // calibrated, by the same rules with that special case as the baseline (its extra parameters
-    // must remove the share of misfit the rules ask, on estimation and validation, and more than
-    // the noise). The switch-off rule does not apply: the special case, calibrated, is the richer
-    // law with its extra terms switched off and every other parameter free.
-    auto against = [&](const Trial& richer, const Trial& special) {
-      HypothesisEvidence e = evidence(richer);
-      e.cost_null = special.cost;
-      e.cost_null_validation = special.cost_val;
-      e.cost_neutral = kNaN;
-      return e;
-    };
-    for (std::size_t i = 1; i < trials.size(); ++i) {
-      if (!trials[i].ok) continue;
-      trials[i].rules = check_rules(evidence(trials[i]), rules);
-      trials[i].accepted = passes(trials[i].rules);
-    }
-    // The special cases of an accepted law that were not calibrated in this round are, as
-    // baselines of the nested rule only.
-    std::vector<Candidate> extra;
-    {
-      std::vector<const Candidate*> calibrated;
-      for (std::size_t j = 1; j < trials.size(); ++j)
-        if (trials[j].ok) calibrated.push_back(&trials[j].cand);
-      for (std::size_t i = 1; i < trials.size(); ++i)
-        if (trials[i].accepted)
-          for (auto& k : missing_special_cases(c, h.current, cur_res, trials[i].cand, calibrated)) {
-            bool dup = false;
-            for (const auto& x : extra) dup = dup || (x.effect == k.effect && x.equation == k.equation);
-            if (!dup) extra.push_back(std::move(k));
-          }
-    }
-    std::vector<ToRefine> extra_to_refine;
-    for (const auto& e : extra) extra_to_refine.push_back({&e, {values_of(e.model)}});
-    const std::vector<Trial> baselines = refine(c, extra_to_refine, h.known_scales);
-    std::vector<const Trial*> special_cases;
-    for (std::size_t j = 1; j < trials.size(); ++j)
-      if (trials[j].ok) special_cases.push_back(&trials[j]);
-    for (const auto& b : baselines)
-      if (b.ok) special_cases.push_back(&b);
-    // ... and the data must exclude the special case: the richer law's bounded-error interval of
-    // a parameter fixed on the way leaves out the fixed value (a richer law whose extra term could
-    // be zero fits better only by fitting what else the model leaves out).
-    std::map<std::size_t, std::map<std::string, std::array<double, 3>>> intervals;  // estimate, lo, hi
-    auto interval_of = [&](std::size_t i, const std::string& name) -> std::array<double, 3> {
-      if (!intervals.count(i)) {
-        auto& box = intervals[i];
-        try {
-          // At the law's optimum, as stage 4 computes them: the calibration continued (a second
-          // budget: a rough cost such as Stribeck's stops short of it), then refined with the
-          // final substeps.
-          const Trial& t = trials[i];
-          Simulator fast(t.model, c.estimation, {opt.screening_substeps}), s(t.model, c.estimation, {opt.final_substeps});
-          const std::vector<int> fr = s.free_parameters();
-          auto ks = h.known_scales;
-          for (std::size_t k = 0; k < t.cand.parameters.size(); ++k) ks.emplace_back(t.cand.parameters[k], t.cand.scales[k]);
-          CalibrationOptions o;
-          o.scale = scales_for(t.model, fr, ks);
-          o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
-          const CalibrationResult further = calibrate(fast, values_of(t.model), fr, o);
-          const CalibrationResult r =
-              refine_with_final_substeps(c, s, further.ok && further.cost < t.cost ? further.parameters : values_of(t.model), fr, o);
-          if (!r.ok) throw NumericalError("the law blows up with the final substeps");
-          const Eigen::MatrixXd J = output_jacobian(s, r.parameters, fr, o.scale, r.outputs);
-          const OutputErrorIntervals oe = output_error_intervals(J, s.measured() - r.outputs, r.parameters, fr, o.scale);
-          for (std::size_t k = 0; oe.built && k < fr.size(); ++k)
-            box[t.model.parameters[static_cast<std::size_t>(fr[k])].name] = {r.parameters[fr[k]], oe.lo[k], oe.hi[k]};
-        } catch (const std::exception&) {
-          // no interval: the special case is not excluded
-        }
-      }
-      const auto& box = intervals[i];
-      const auto it = box.find(name);
-      return it == box.end() ? std::array<double, 3>{kNaN, -inf, inf} : it->second;
-    };
-    auto excludes = [&](std::size_t i, const Fixed& fixed, std::string& why) {
-      if (fixed.empty()) return true;  // reached by equalities only: the rules alone decide
-      for (const auto& [name, value] : fixed) {
-        const auto [estimate, lo, hi] = interval_of(i, name);
-        if (value < lo || value > hi) return true;
-        why += (why.empty() ? "" : ", ") + name + " = " + fmt(estimate) + " in [" + fmt(lo) +
-               ", " + fmt(hi) + "] holds " + fmt(value);
-      }
-      return false;
-    };
-    std::vector<std::size_t> ok;
-    std::map<std::size_t, std::string> beats;  // a richer law kept: the special cases it beat
-    for (std::size_t i = 1; i < trials.size(); ++i) {
-      for (const Trial* j : special_cases) {
-        Fixed fixed;
-        if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
-        if (!passes(check_rules(against(trials[i], *j), rules))) {
-          trials[i].accepted = false;
-          trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
-        } else if (std::string why; !excludes(i, fixed, why)) {
-          trials[i].accepted = false;
-          trials[i].not_beyond = j->cand.effect + " (bounded-error interval: " + why + ")";
-        } else {
-          beats[i] += (beats[i].empty() ? "" : ", ") + j->cand.effect;
-        }
-      }
-      if (trials[i].accepted) ok.push_back(i);
-    }
-    for (std::size_t i = 1; i < trials.size(); ++i) {
-      const Trial& t = trials[i];
-      std::ostringstream line;
-      line << "    " << list[i - 1]->candidate.effect << " (" << list[i - 1]->candidate.equation << "): ";
-      if (!t.ok) line << "could not be calibrated";
-      else {
-        line << "misfit " << fixed1(100 * t.cost / std::max(cost_cur, 1e-300)) << " % of the current model's";
-        if (c.validation) line << ", validation " << fixed1(100 * t.cost_val / std::max(cost_cur_val, 1e-300)) << " %";
-        line << (t.accepted             ? ", passes every rule"
-                 : t.not_beyond.empty() ? ", fails a rule"
-                                        : ", not beyond its special case " + t.not_beyond);
-      }
-      c.say(line.str());
-    }
-    if (ok.empty()) break;
-    // The sparsest explanation: misfit (validation when there is one) x tolerance^parameters.
-    auto score = [&](std::size_t i) {
-      const double judged = c.validation ? trials[i].cost_val : trials[i].cost;
-      int p = static_cast<int>(trials[i].cand.parameters.size());
-      for (const auto& part : trials[i].cand.parts.empty() ? std::vector<Candidate>{trials[i].cand} : trials[i].cand.parts)
-        p += part.effect == "time_delay" ? 1 : 0;
-      return judged * std::pow(opt.sparsity_tolerance, p);
-    };
-    std::size_t pick = ok.front(), best = ok.front();
-    for (std::size_t i : ok) {
-      if (score(i) < score(pick)) pick = i;
-      if ((c.validation ? trials[i].cost_val : trials[i].cost) < (c.validation ? trials[best].cost_val : trials[best].cost)) best = i;
-    }
-    // Between nested hypotheses the rules decide, not the parameter count: an accepted richer law
-    // has passed them against the special case picked.
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (std::size_t i : ok)
-        if (nests(trials[i].cand, trials[pick].cand)) {
-          pick = i;
-          moved = true;
-          break;
-        }
-    }
-    if (trials[pick].cand.effect == "time_delay") {
-      // Refine the number of samples; the refined delay must pass the rules too.
-      const Candidate better = best_delay(c, h.current, trials[pick].cand, bound);
-      if (better.delay_samples != trials[pick].cand.delay_samples) {
-        Trial t = refine(c, better, {values_of(better.model)}, h.known_scales);
-        if (t.ok) {
-          t.rules = check_rules(evidence(t), rules);
-          t.screening_gain = trials[pick].screening_gain;
-          if (passes(t.rules) && (c.validation ? t.cost_val <= trials[pick].cost_val : t.cost <= trials[pick].cost)) trials[pick] = t;
-        }
-      }
-    }
-    const Trial& t = trials[pick];
-    // One effect, or two at once (each reported with its own share of the misfit).
-    const std::vector<Candidate> parts = t.cand.parts.empty() ? std::vector<Candidate>{t.cand} : t.cand.parts;
-    std::vector<std::size_t> order(parts.size());
-    for (std::size_t k = 0; k < parts.size(); ++k) order[k] = k;
-    auto own_share = [&](std::size_t k) {
-      const double off = t.part_neutral.empty() ? t.cost_neutral : t.part_neutral[k];
-      return std::isfinite(off) && off > 0 ? (off - t.cost) / off : 0.0;
-    };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return own_share(a) > own_share(b); });
-    for (std::size_t k : order) {
-      const Candidate& part = parts[k];
-      DiagnosedEffect e;
-      e.name = part.effect;
-      e.equation = part.equation;
-      e.term = part.term;
-      e.delay_samples = part.delay_samples;
-      if (const auto* pe = find_effect(e.name)) e.placement = pe->placement;
-      e.rules = t.rules;
-      for (auto& r : e.rules)
-        if (r.name == "own_term" && !t.part_neutral.empty()) {
-          r.value = own_share(k);
-          r.applies = std::isfinite(t.part_neutral[k]);
-          r.passed = !r.applies || r.value >= r.threshold;
-        }
-      e.screening_gain = t.screening_gain;
-      e.cost_reduction_estimation = t.rules[0].value;
-      e.cost_reduction_validation = t.rules[3].applies ? t.rules[3].value : 0;
-      std::ostringstream ev;
-      ev << "adding " << part.term << " to " << part.equation;
-      if (parts.size() > 1) ev << " (together with " << parts[1 - k].effect << " in " << parts[1 - k].equation << ")";
-      ev << " removes " << fixed1(100 * e.cost_reduction_estimation) << " % of the squared misfit on the estimation record";
-      if (c.validation) ev << " and " << fixed1(100 * e.cost_reduction_validation) << " % on validation";
-      ev << " (screened " << screening.ranked.size() << " hypotheses, refined " << list.size() << ", " << ok.size() << " passed every rule";
-      if (pick != best) ev << "; preferred to " << trials[best].cand.effect << " as the sparser explanation";
-      if (beats.count(pick)) ev << "; preferred to " << beats[pick] << ", its special case, by the same rules";
-      ev << ")";
-      if (round == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
-      e.evidence = ev.str();
-      c.say("  found " + e.name + " in " + e.equation);
-      for (std::size_t q = 0; q < part.parameters.size(); ++q) h.known_scales.emplace_back(part.parameters[q], part.scales[q]);
-      d.effects.push_back(e);
-      chosen.push_back(part.effect);
-      h.chosen.push_back(part);
-    }
-    h.current = t.model;
+    Round r;
+    r.index = round;
+    screen_round(c, h, chosen, bound, r, d);
+    refine_round(c, h, r, d);
+    judge_round(c, h, noise, rules, r);
+    say_round(c, r);
+    if (r.ok.empty()) break;
+    const auto [pick, best] = pick_sparsest(c, r);
+    if (r.trials[pick].cand.effect == "time_delay") refine_picked_delay(c, h, bound, noise, rules, r, pick);
+    record_pick(c, r, pick, best, h, chosen, d);
     // Within the noise now? Then nothing more is missing.
-    if (stop_at_noise && round + 1 < opt.max_effects) {
-      Simulator s(h.current, c.estimation, {opt.screening_substeps});
-      const SimulationResult r = s.simulate(values_of(h.current));
-      if (test_residual(s, values_of(h.current), r, noise.sigma).within_noise()) break;
-    }
+    if (stop_at_noise && round + 1 < opt.max_effects && within_noise(c, h.current, noise)) break;
   }
   return h;
 }

@@ -63,12 +63,16 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
     for (const auto& p : e.parameters) {
       J oe_delta = J::object();
       for (std::size_t k = 0; k < p.oe_delta.size() && k < d.outputs.size(); ++k) oe_delta[d.outputs[k]] = num(p.oe_delta[k]);
+      const bool bounded = p.has_ee && p.ee_certified;
       ps[p.name] = {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
-                    {"statistical_95", {num(p.stat_lo), num(p.stat_hi)}},
-                    {"interval_output_error", {num(p.oe_lo), num(p.oe_hi)}},
+                    {"interval_kind", bounded ? "bounded-error interval: holds when |equation error| <= error_bound.equation_error "
+                                                "(an assumption); met with the declared min/max"
+                                              : "no bounded-error set could be built: only the declared min/max; see the estimates"},
                     {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)},
+                    {"interval_equation_error_certified", p.has_ee ? J(p.ee_certified) : J(nullptr)},
+                    {"estimate_interval_output_error_linearised", {num(p.estimate_oe_lo), num(p.estimate_oe_hi)}},
+                    {"estimate_statistical_95", {num(p.estimate_stat_lo), num(p.estimate_stat_hi)}},
                     {"role", p.role},
-                    {"interval_kind", "bounded-error interval: holds when |e| <= the error bounds below (an assumption)"},
                     {"error_bound", {{"output_error", oe_delta}, {"equation_error", p.has_ee ? num(p.ee_delta) : J(nullptr)}}}};
     }
     J rules = J::array();
@@ -169,11 +173,16 @@ std::string diagnosis_text(const Diagnosis& d) {
     const auto& e = d.effects[k];
     o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
     for (const auto& p : e.parameters) {
-      o << "     " << p.name << " = " << fmt(p.estimate, 5) << ", bounded-error interval [" << fmt(p.lo, 5) << ", " << fmt(p.hi, 5)
-        << "] under |e| <= delta: output error [" << fmt(p.oe_lo, 5) << ", " << fmt(p.oe_hi, 5) << "] with delta =";
+      o << "     " << p.name << " = " << fmt(p.estimate, 5);
+      if (p.has_ee && p.ee_certified)
+        o << ", bounded-error interval [" << fmt(p.lo, 5) << ", " << fmt(p.hi, 5) << "] under |equation error| <= " << fmt(p.ee_delta, 3);
+      else
+        o << ", no bounded-error interval (" << (p.has_ee ? "equation-error PUI not certified" : "no equation-error PUI") << ")";
+      o << "; estimates: output error linearised at the estimate [" << fmt(p.estimate_oe_lo, 5) << ", " << fmt(p.estimate_oe_hi, 5)
+        << "] with delta =";
       for (std::size_t k = 0; k < p.oe_delta.size(); ++k) o << (k ? "," : "") << " " << fmt(p.oe_delta[k], 3) << " (" << d.outputs[k] << ")";
-      if (p.has_ee) o << "; equation error [" << fmt(p.ee_lo, 5) << ", " << fmt(p.ee_hi, 5) << "] with delta = " << fmt(p.ee_delta, 3);
-      o << "; statistical 95 % [" << fmt(p.stat_lo, 5) << ", " << fmt(p.stat_hi, 5) << "]\n";
+      if (p.has_ee && !p.ee_certified) o << "; equation error (not certified) [" << fmt(p.ee_lo, 5) << ", " << fmt(p.ee_hi, 5) << "]";
+      o << "; statistical 95 % [" << fmt(p.estimate_stat_lo, 5) << ", " << fmt(p.estimate_stat_hi, 5) << "]\n";
     }
     if (e.delay_samples > 0) o << "     delay: " << e.delay_samples << " samples\n";
     o << "     rules:";

@@ -94,9 +94,9 @@ void effects_section(std::ostringstream& o, const J& j, const ModelFile& model) 
     return;
   }
   o << "<table><tr><th>#</th><th class=\"l\">effect</th><th class=\"l\">equation</th><th class=\"l\">term added</th>"
-       "<th class=\"l\">parameter</th><th>estimate</th><th>guaranteed interval<br><span class=\"unit\">under the stated "
-       "error bounds</span></th><th>equation-error PUI</th><th>output-error PUI<br><span class=\"unit\">linearised at the "
-       "estimate</span></th><th>statistical 95&nbsp;% interval<br><span class=\"unit\">white-noise assumption, not "
+       "<th class=\"l\">parameter</th><th>estimate</th><th>bounded-error interval<br><span class=\"unit\">under the stated "
+       "error bounds</span></th><th>equation-error PUI</th><th>estimate: output-error PUI<br><span class=\"unit\">linearised at the "
+       "estimate</span></th><th>estimate: statistical 95&nbsp;% interval<br><span class=\"unit\">white-noise assumption, not "
        "guaranteed</span></th></tr>\n";
   int k = 0;
   for (const auto& e : j["effects"]) {
@@ -119,15 +119,16 @@ void effects_section(std::ostringstream& o, const J& j, const ModelFile& model) 
       const auto& p = it.value();
       o << "<td class=\"l\">" << escape(it.key()) << "</td><td>" << num(p["estimate"]) << u << "</td><td><b>"
         << interval(p["interval"]) << "</b>" << u << "</td><td>" << interval(p["interval_equation_error"])
-        << "</td><td>" << interval(p["interval_output_error"]) << "</td><td>" << interval(p["statistical_95"])
+        << "</td><td>" << interval(p["estimate_interval_output_error_linearised"]) << "</td><td>" << interval(p["estimate_statistical_95"])
         << "</td></tr>\n";
     }
   }
   o << "</table>\n<ul class=\"note\">";
   for (const auto& e : j["effects"])
     o << "<li><b>" << escape(e["name"].get<std::string>()) << "</b>: " << escape(e["evidence"].get<std::string>()) << "</li>";
-  o << "</ul>\n<p class=\"note\">The guaranteed interval is the intersection of the equation-error and output-error "
-       "parameter uncertainty intervals (certified LP bounds); it holds when the error bounds below hold. "
+  o << "</ul>\n<p class=\"note\">The bounded-error interval is the equation-error parameter uncertainty interval "
+       "(certified LP bounds) met with the parameter's declared range; it holds when the error bounds below hold. The "
+       "output-error interval (linearised at the estimate) and the statistical one are estimates and do not cut it. "
     << escape(j["bound_note"].get<std::string>()) << "</p>\n";
 }
 

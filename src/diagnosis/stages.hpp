@@ -140,5 +140,9 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
 /// The augmented model refined with the final substeps, its fits, and the new parameters'
 /// intervals; fills d.augmented, d.fit_augmented_*, d.augmented_* and the effects' parameters.
 void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch& search, Diagnosis& d);
+/// The reported bounded-error interval [ep.lo, ep.hi]: the declared [min, max] met only with the
+/// sets that hold under the stated error bound (the certified equation-error PUI); the linearised
+/// output-error PUI and the statistical interval are estimates and never cut it.
+void set_bounded_error_interval(EffectParameter& ep, double min, double max);
 
 }  // namespace sets::diagnosis_stage

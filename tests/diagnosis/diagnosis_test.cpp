@@ -39,7 +39,7 @@ TEST(Diagnosis, SyntheticCoulombPlantIsNamedAndCleanPlantGetsNothing) {
 }
 
 // Nested laws: Coulomb friction is Stribeck friction with Fs = 0, so the sparser Coulomb law wins
-// unless the Stribeck law passes every rule against it and its bounded-error interval of Fs
+// unless the Stribeck law passes every rule against it and its linearised output-error interval of Fs
 // excludes 0. On the suite's Stribeck plant (Fs = 0.35 against Fc = 0.15) the data exclude it; on
 // EMPS (EmpsNamesCoulombFrictionAndOffset) asymmetric friction does not get past Coulomb + offset.
 TEST(Diagnosis, RicherLawNamedOnlyWhenTheDataExcludeItsSpecialCase) {
@@ -51,7 +51,7 @@ TEST(Diagnosis, RicherLawNamedOnlyWhenTheDataExcludeItsSpecialCase) {
       << d.effects.front().evidence;
   for (const auto& ep : d.effects.front().parameters) {
     if (ep.role == "Fs") {
-      EXPECT_GT(ep.lo, 0.0);
+      EXPECT_GT(ep.estimate_oe_lo, 0.0);  // the nested rule's interval: the output error linearised at the optimum
     }
   }
 }

@@ -76,7 +76,7 @@ def main():
             fail("the page shows %s, which is not beside it" % img)
     if re.search(r'(src|href)="(https?:)?//', html) or "<script" in html:
         fail("the page is not self-contained (external resource or script)")
-    for must in ("Verdict:", "coulomb_friction", "guaranteed interval", "statistical 95", "not guaranteed"):
+    for must in ("Verdict:", "coulomb_friction", "bounded-error interval", "statistical 95", "not guaranteed"):
         if must not in html:
             fail("the page does not say %r" % must)
 

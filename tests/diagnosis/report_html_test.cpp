@@ -39,8 +39,8 @@ Diagnosis small_diagnosis() {
   EffectParameter p;
   p.name = "Fc";
   p.estimate = 0.31;
-  p.lo = 0.25, p.hi = 0.35, p.oe_lo = 0.2, p.oe_hi = 0.4, p.has_ee = true, p.ee_lo = 0.25, p.ee_hi = 0.35;
-  p.stat_lo = 0.3, p.stat_hi = 0.32;
+  p.lo = 0.25, p.hi = 0.35, p.estimate_oe_lo = 0.2, p.estimate_oe_hi = 0.4, p.has_ee = true, p.ee_lo = 0.25, p.ee_hi = 0.35;
+  p.estimate_stat_lo = 0.3, p.estimate_stat_hi = 0.32;
   e.parameters = {p};
   d.effects = {e};
   return d;

@@ -43,6 +43,9 @@ Diagnosis hand_made() {
   fc.estimate = 0.31;
   fc.lo = 0.28;
   fc.hi = 0.33;
+  fc.has_ee = fc.ee_certified = true;
+  fc.ee_lo = 0.28, fc.ee_hi = 0.33, fc.ee_delta = 0.01;
+  fc.estimate_oe_lo = 0.305, fc.estimate_oe_hi = 0.315;
   fc.oe_delta = {0.05};
   e.parameters.push_back(fc);
   d.effects.push_back(e);
@@ -90,4 +93,15 @@ TEST(Report, TextNamesTheFitsWithUnitsTheParametersAndTheVerdict) {
   EXPECT_TRUE(contains(t, "Verdict: Missing physics: coulomb_friction (v).")) << t;
   EXPECT_TRUE(contains(t, "coulomb_friction in v: -Fc*sign(v)")) << t;
   EXPECT_TRUE(contains(t, "Fc = 0.31, bounded-error interval [0.28, 0.33]")) << t;
+  EXPECT_TRUE(contains(t, "estimates: output error linearised at the estimate [0.305, 0.315]")) << t;
+  // Without a certified equation-error PUI there is no bounded-error interval, only estimates.
+  Diagnosis d = hand_made();
+  d.effects[0].parameters[0].ee_certified = false;
+  const std::string u = diagnosis_text(d);
+  EXPECT_TRUE(contains(u, "Fc = 0.31, no bounded-error interval (equation-error PUI not certified)")) << u;
+  const auto j = nlohmann::json::parse(diagnosis_json(d, ""));
+  const auto& fcj = j.at("effects").at(0).at("parameters").at("Fc");
+  EXPECT_TRUE(fcj.contains("estimate_interval_output_error_linearised"));
+  EXPECT_TRUE(fcj.contains("estimate_statistical_95"));
+  EXPECT_FALSE(fcj.contains("interval_output_error"));
 }

@@ -40,9 +40,10 @@ TEST_P(RandomSuiteSlice, CompletesInventsNothingAndMissesNoConcealedEffect) {
 // exception yet (GUIDE: known traps).
 INSTANTIATE_TEST_SUITE_P(DevelopmentSeeds, RandomSuiteSlice, ::testing::Range(3000000u, 3000003u));
 
-// The report lists every true value outside its reported interval, with the sets it is the meet
-// of, and only those (scored results made by hand: no diagnosis run).
-TEST(SuiteReport, ListsEveryTrueValueOutsideItsIntervalAndOnlyThose) {
+// The report lists every true value outside its bounded-error interval, its linearised estimate or
+// their meet, with the sets involved and which one missed, and only those (scored results made by
+// hand: no diagnosis run).
+TEST(SuiteReport, ListsEveryTrueValueOutsideAnIntervalAndOnlyThose) {
   SuitePlantResult r;
   r.name = "plant-a";
   r.answer = "missing";
@@ -50,15 +51,27 @@ TEST(SuiteReport, ListsEveryTrueValueOutsideItsIntervalAndOnlyThose) {
   r.truth.back().name = "coulomb_friction";
   r.named = {"coulomb_friction"};
   r.places = {"v"};
-  r.coverage.push_back({"coulomb_friction", "Fc", 1.5, 1.1, 1.2, 1.15, 1.1, 1.2, false, 0, 0, 1.14, 1.16, false});
-  r.coverage.push_back({"coulomb_friction", "Fv", 0.3, 0.25, 0.35, 0.31, 0.2, 0.4, true, 0.25, 0.35, 0.3, 0.32, true});
+  SuiteCoverage fc;  // outside everything
+  fc.effect = "coulomb_friction", fc.role = "Fc", fc.truth = 1.5, fc.lo = 1.1, fc.hi = 1.2, fc.estimate = 1.15;
+  fc.estimate_oe_lo = 1.1, fc.estimate_oe_hi = 1.2, fc.has_ee = fc.ee_certified = fc.bounded = true, fc.ee_lo = 1.1, fc.ee_hi = 1.2;
+  SuiteCoverage fv;  // inside everything
+  fv.effect = "coulomb_friction", fv.role = "Fv", fv.truth = 0.3, fv.lo = 0.25, fv.hi = 0.35, fv.estimate = 0.31;
+  fv.estimate_oe_lo = 0.2, fv.estimate_oe_hi = 0.4, fv.has_ee = fv.ee_certified = fv.bounded = true, fv.ee_lo = 0.25, fv.ee_hi = 0.35;
+  fv.inside = fv.inside_estimate = fv.inside_meet = true;
+  r.coverage = {fc, fv};
   const std::string text = suite_report({r}, false);
-  EXPECT_NE(text.find("1 of 2"), std::string::npos);
-  const auto at = text.find("True values outside the reported interval");
+  EXPECT_NE(text.find("bounded-error interval (certified equation-error PUI): 2 of 2 (100.0 %); inside it: 1 of 2"), std::string::npos) << text;
+  const auto at = text.find("True values outside an interval");
   ASSERT_NE(at, std::string::npos);
   const std::string misses = text.substr(at);
   EXPECT_NE(misses.find("| plant-a | coulomb_friction | Fc | 1.5 | [1.1, 1.2] |"), std::string::npos) << misses;
+  EXPECT_NE(misses.find("| bounded-error, estimate, meet |"), std::string::npos) << misses;
   EXPECT_EQ(misses.find("| Fv |"), std::string::npos) << misses;
-  r.coverage.front().inside = true;
+  // Only the linearised estimate misses: listed as such, and not counted against the bounded-error figure.
+  r.coverage.front().inside = r.coverage.front().inside_meet = true;
+  const std::string again = suite_report({r}, false);
+  EXPECT_NE(again.find("inside it: 2 of 2"), std::string::npos) << again;
+  EXPECT_NE(again.find("| estimate |"), std::string::npos) << again;
+  r.coverage.front().inside_estimate = true;
   EXPECT_EQ(suite_report({r}, false).find("True values outside"), std::string::npos);
 }

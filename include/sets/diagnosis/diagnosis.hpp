@@ -89,16 +89,19 @@ struct EffectParameter {
   std::string name;
   std::string role;                 // the catalogue's role (e.g. "Fc"), whatever the symbol is called
   double estimate = 0;
-  double lo = 0, hi = 0;            // bounded-error interval: holds under the error bounds below (an
-                                    // assumption, not a theorem): the intersection of the output-error
-                                    // and equation-error PUIs (the output-error one alone when no
-                                    // equation-error PUI was built); +-inf if unbounded
-  double oe_lo = 0, oe_hi = 0;      // PUI of the output error linearised at the estimate ...
-  std::vector<double> oe_delta;     // ... under |e_j| <= oe_delta[j] per output (1.5 x largest residual)
+  double lo = 0, hi = 0;            // bounded-error interval: holds under the stated error bound (an
+                                    // assumption, not a theorem). Only sets that hold under it are met:
+                                    // the equation-error PUI (has_ee) and the declared [min, max]; with
+                                    // no equation-error PUI it is [min, max] alone (+-inf if unbounded).
+                                    // The estimates below never cut it.
+  double estimate_oe_lo = 0, estimate_oe_hi = 0;  // estimate: PUI of the output error *linearised* at the
+  std::vector<double> oe_delta;     // estimate under |e_j| <= oe_delta[j] per output (1.5 x largest
+                                    // residual); the nonlinear model's set need not lie inside it
   bool has_ee = false;              // an equation-error PUI was built (sets/equation_error.hpp) ...
+  bool ee_certified = false;        // ... every finite end of it certified by a safe bound ...
   double ee_lo = 0, ee_hi = 0;
   double ee_delta = 0;              // ... under |integrated equation error| <= ee_delta
-  double stat_lo = 0, stat_hi = 0;  // 95 % statistical interval (white-noise assumption)
+  double estimate_stat_lo = 0, estimate_stat_hi = 0;  // estimate: 95 % statistical interval (white noise)
 };
 
 struct DiagnosedEffect {

@@ -16,12 +16,15 @@ namespace sets {
 
 struct SuiteCoverage {
   std::string effect, role;
-  double truth = 0, lo = 0, hi = 0, estimate = 0;
-  double oe_lo = 0, oe_hi = 0;            // the output-error PUI ...
-  bool has_ee = false;
-  double ee_lo = 0, ee_hi = 0;            // ... and the equation-error one, whose meet is [lo, hi]
-  double stat_lo = 0, stat_hi = 0;        // 95 % statistical interval (white-noise assumption)
-  bool inside = false;
+  double truth = 0, lo = 0, hi = 0, estimate = 0;       // [lo, hi]: the reported bounded-error interval
+  double estimate_oe_lo = 0, estimate_oe_hi = 0;        // estimate: the output-error PUI, linearised
+  bool has_ee = false, ee_certified = false;
+  double ee_lo = 0, ee_hi = 0;                          // the equation-error PUI
+  double estimate_stat_lo = 0, estimate_stat_hi = 0;    // estimate: 95 % statistical interval (white noise)
+  bool bounded = false;         // a bounded-error set was built (certified equation-error PUI): [lo, hi] means something
+  bool inside = false;          // truth in [lo, hi] (trivially when !bounded: [lo, hi] is the declared range)
+  bool inside_estimate = false; // truth in the linearised output-error estimate
+  bool inside_meet = false;     // truth in the meet of the two PUIs (the reported interval before 2026-11-23)
 };
 
 struct SuitePlantResult {
