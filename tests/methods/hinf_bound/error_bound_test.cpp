@@ -21,10 +21,7 @@ using namespace sets::testing;
 // bound also has to be an improvement on the prior-slope b (the reason it exists).
 TEST(HinfDataBound, StochasticCoverageOfTheTrueSystem) {
   const FirstOrderSum G0{{0.4, 0.2}, {0.6, -0.5}};
-  HinfPriors p;
-  p.M = 1;
-  p.rho = 0.7;
-  p.u_bar = 1;
+  const HinfPriors p{.M = 1, .rho = 0.7, .u_bar = 1};
   const Eigen::VectorXd grid = uniform_grid(30);
   ColouredNoiseRuns data(G0, 17);
   HinfBoundOptions o;

@@ -105,10 +105,7 @@ TEST(HinfDataBound, TailSlopeBoundHolds) {
 // 10% of the runs may have a region that misses G0; 40 runs allow 4 + 3 sd = 10 (the app runs 200+).
 TEST(HinfStochastic, RegionsCoverTheTrueSystemAtTheStatedLevel) {
   const FirstOrderSum G0{{0.4, 0.2}, {0.6, -0.5}};
-  HinfPriors p;
-  p.M = 1;
-  p.rho = 0.7;
-  p.u_bar = 1;
+  const HinfPriors p{.M = 1, .rho = 0.7, .u_bar = 1};
   const Eigen::VectorXd grid = uniform_grid(30);
   ColouredNoiseRuns data(G0, 11);
   int miss = 0, ellipse_miss = 0;
