@@ -85,21 +85,135 @@ std::string fix(double x, int digits = 3) {
   return os.str();
 }
 
+// What one setting's runs add up to: the means and spreads printed beside the paper's.
+struct SettingSummary {
+  Stats snr_w, snr_lambda;
+  std::vector<Stats> theta_c, delta_theta;  // per parameter, over the runs with a non-empty FPS
+  int covered = 0, empty = 0, guaranteed = 0, orthants = 0, feasible_orthants = 0;
+  double seconds = 0;  // bounding time summed over the runs
+};
+
+SettingSummary summarize(const RunResult* runs, int count) {
+  std::vector<double> snr_w, snr_l;
+  std::vector<std::vector<double>> tc(6), dt(6);
+  SettingSummary s;
+  for (int run = 0; run < count; ++run) {
+    const RunResult& r = runs[run];
+    snr_w.push_back(r.snr_w);
+    snr_l.push_back(r.snr_lambda);
+    s.seconds += r.seconds;
+    s.covered += r.covered;
+    s.empty += r.empty;
+    s.guaranteed += r.guaranteed;
+    s.orthants += r.orthants;
+    s.feasible_orthants += r.feasible_orthants;
+    if (r.empty) continue;
+    for (int l = 0; l < 6; ++l) {
+      tc[l].push_back(r.theta_c[l]);
+      dt[l].push_back(r.delta_theta[l]);
+    }
+  }
+  s.snr_w = stats(snr_w);
+  s.snr_lambda = stats(snr_l);
+  for (int l = 0; l < 6; ++l) {
+    s.theta_c.push_back(stats(tc[l]));
+    s.delta_theta.push_back(stats(dt[l]));
+  }
+  return s;
+}
+
+void print_table_header(const sets::cerone_regruto::PaperTable& spec, const TableRuns& tr) {
+  std::cout << "\nTable " << spec.name << ": lambda " << (spec.uniform ? "uniform in [-1, 1]" : "= sin(0.1 t)")
+            << ", N = " << spec.N << ", " << tr.runs << " runs, "
+            << (tr.options.orthants == sets::OrthantSelection::all ? "all orthants" : "Remark-2 orthants")
+            << (tr.regressor_errors == sets::RegressorErrors::both ? ""
+                                                                   : ", DIAGNOSTIC regressor boxes (not guaranteed)")
+            << '\n';
+}
+
+void print_setting(const Setting& s, const SettingSummary& m, const sets::cerone_regruto::PaperLevel* paper, int runs) {
+  const std::vector<std::string> names = sets::cerone_regruto::structure().parameter_names();
+  const Eigen::VectorXd theta = sets::cerone_regruto::true_theta();
+  std::cout << "  level " << (s.level > 0 ? std::to_string(s.level) : std::string("custom")) << ": Delta E = "
+            << sci(s.delta_e, 2) << "   SNR_w " << fix(m.snr_w.mean, 1) << " dB (paper "
+            << (paper ? fix(paper->snr_w, 1) : "-") << ")   SNR_lambda " << fix(m.snr_lambda.mean, 1) << " dB (paper "
+            << (paper ? fix(paper->snr_lambda, 1) : "-") << ")   true theta in all PUIs: " << m.covered << "/" << runs
+            << (m.empty ? "   EMPTY FPS in " + std::to_string(m.empty) + " runs" : "") << '\n';
+  std::cout << "    " << std::left << std::setw(18) << "parameter" << std::right << std::setw(6) << "true"
+            << std::setw(22) << "theta_c ours" << std::setw(9) << "paper" << std::setw(24) << "Delta theta ours"
+            << std::setw(10) << "paper" << '\n';
+  for (int l = 0; l < 6; ++l) {
+    const Stats &a = m.theta_c[l], &b = m.delta_theta[l];
+    std::cout << "    " << std::left << std::setw(18) << names[l] << std::right << std::setw(6) << fix(theta[l], 1)
+              << std::setw(22) << (fix(a.mean, 4) + " +- " + fix(a.std, 4)) << std::setw(9)
+              << (paper ? fix(paper->theta_c[l]) : "-") << std::setw(24) << (sci(b.mean) + " +- " + sci(b.std))
+              << std::setw(10) << (paper ? sci(paper->delta_theta[l]) : "-") << '\n';
+  }
+  std::cout << "    orthants examined per run " << fix(static_cast<double>(m.orthants) / runs, 2) << " (feasible "
+            << fix(static_cast<double>(m.feasible_orthants) / runs, 2) << "), every end certified in " << m.guaranteed
+            << "/" << runs << " runs, bounding time " << fix(1e3 * m.seconds / runs, 1) << " ms per run\n";
+}
+
+sets::app::Json setting_json(const Setting& s, const SettingSummary& m, const TableRuns& tr) {
+  const auto& spec = sets::cerone_regruto::paper_tables()[static_cast<std::size_t>(s.table)];
+  const sets::cerone_regruto::PaperLevel* paper = s.level > 0 ? &spec.paper[s.level - 1] : nullptr;
+  const int runs = tr.runs;
+  sets::app::Json js;
+  js["table"] = spec.name;
+  js["level"] = s.level;
+  js["N"] = spec.N;
+  js["lambda"] = spec.uniform ? "uniform" : "sin";
+  js["delta_e"] = s.delta_e;
+  js["runs"] = runs;
+  js["coefficient_time"] = tr.lagged_coefficients ? "lagged" : "current";
+  js["regressor_noise"] = sets::to_string(tr.regressor_errors);
+  js["snr_w"] = m.snr_w.mean;
+  js["snr_lambda"] = m.snr_lambda.mean;
+  js["theta_true"] = sets::app::to_json(sets::cerone_regruto::true_theta());
+  std::vector<double> tcm, tcs, dtm, dts;
+  for (int l = 0; l < 6; ++l) {
+    tcm.push_back(m.theta_c[l].mean);
+    tcs.push_back(m.theta_c[l].std);
+    dtm.push_back(m.delta_theta[l].mean);
+    dts.push_back(m.delta_theta[l].std);
+  }
+  js["theta_c_mean"] = tcm;
+  js["theta_c_std"] = tcs;
+  js["delta_theta_mean"] = dtm;
+  js["delta_theta_std"] = dts;
+  js["coverage"] = static_cast<double>(m.covered) / runs;
+  js["guaranteed_share"] = static_cast<double>(m.guaranteed) / runs;
+  js["empty_runs"] = m.empty;
+  js["orthants_mean"] = static_cast<double>(m.orthants) / runs;
+  js["feasible_orthants_mean"] = static_cast<double>(m.feasible_orthants) / runs;
+  js["seconds"] = m.seconds;
+  if (paper) {
+    js["paper"] = {{"snr_w", paper->snr_w},
+                   {"snr_lambda", paper->snr_lambda},
+                   {"theta_c", std::vector<double>(paper->theta_c, paper->theta_c + 6)},
+                   {"delta_theta", std::vector<double>(paper->delta_theta, paper->delta_theta + 6)}};
+  }
+  return js;
+}
+
+std::vector<Setting> settings_of(const TableRuns& tr) {
+  const auto& tables = sets::cerone_regruto::paper_tables();
+  std::vector<Setting> settings;
+  for (int t : tr.tables) {
+    if (tr.delta_e > 0)
+      settings.push_back({t, 0, tr.delta_e});
+    else
+      for (int lv = 1; lv <= 4; ++lv) settings.push_back({t, lv, tables[t].delta_e[lv - 1]});
+  }
+  return settings;
+}
+
 }  // namespace
 
 int run_tables(const TableRuns& tr) {
   const auto& kTables = sets::cerone_regruto::paper_tables();
   const int runs = tr.runs;
-  const auto& options = tr.options;
-  const std::vector<int>& tables = tr.tables;
-  const double delta_e_override = tr.delta_e;
-  std::vector<Setting> settings;
-  for (int t : tables) {
-    if (delta_e_override > 0)
-      settings.push_back({t, 0, delta_e_override});
-    else
-      for (int lv = 1; lv <= 4; ++lv) settings.push_back({t, lv, kTables[t].delta_e[lv - 1]});
-  }
+  const std::vector<Setting> settings = settings_of(tr);
   // One job per (setting, run); each job builds its own FPS and LPs on its own thread.
   const std::size_t jobs = settings.size() * static_cast<std::size_t>(runs);
   std::vector<RunResult> results(jobs);
@@ -117,103 +231,18 @@ int run_tables(const TableRuns& tr) {
       return sets::exit_code_for(e);
     }
   }
-
-  const LpvModelStructure model = sets::cerone_regruto::structure();
-  const auto names = model.parameter_names();
-  const Eigen::VectorXd theta = sets::cerone_regruto::true_theta();
   sets::app::Json out;
   out["settings"] = sets::app::Json::array();
   bool all_covered = true;
   int last_table = -1;
   for (std::size_t si = 0; si < settings.size(); ++si) {
     const Setting& s = settings[si];
-    const auto& spec = kTables[s.table];
-    const sets::cerone_regruto::PaperLevel* paper = s.level > 0 ? &spec.paper[s.level - 1] : nullptr;
-    std::vector<double> snr_w, snr_l, seconds;
-    std::vector<std::vector<double>> tc(6), dt(6);
-    int covered = 0, empty = 0, guaranteed = 0, orthants = 0, feasible_orthants = 0;
-    for (int run = 0; run < runs; ++run) {
-      const RunResult& r = results[si * static_cast<std::size_t>(runs) + static_cast<std::size_t>(run)];
-      snr_w.push_back(r.snr_w);
-      snr_l.push_back(r.snr_lambda);
-      seconds.push_back(r.seconds);
-      covered += r.covered;
-      empty += r.empty;
-      guaranteed += r.guaranteed;
-      orthants += r.orthants;
-      feasible_orthants += r.feasible_orthants;
-      if (r.empty) continue;
-      for (int l = 0; l < 6; ++l) {
-        tc[l].push_back(r.theta_c[l]);
-        dt[l].push_back(r.delta_theta[l]);
-      }
-    }
-    all_covered = all_covered && covered == runs;
-    if (s.table != last_table) {
-      std::cout << "\nTable " << spec.name << ": lambda " << (spec.uniform ? "uniform in [-1, 1]" : "= sin(0.1 t)")
-                << ", N = " << spec.N << ", " << runs << " runs, "
-                << (options.orthants == sets::OrthantSelection::all ? "all orthants" : "Remark-2 orthants")
-                << (tr.regressor_errors == sets::RegressorErrors::both ? ""
-                                                             : ", DIAGNOSTIC regressor boxes (not guaranteed)")
-                << '\n';
-      last_table = s.table;
-    }
-    const Stats sw = stats(snr_w), sl = stats(snr_l);
-    std::cout << "  level " << (s.level > 0 ? std::to_string(s.level) : std::string("custom")) << ": Delta E = "
-              << sci(s.delta_e, 2) << "   SNR_w " << fix(sw.mean, 1) << " dB (paper "
-              << (paper ? fix(paper->snr_w, 1) : "-") << ")   SNR_lambda " << fix(sl.mean, 1) << " dB (paper "
-              << (paper ? fix(paper->snr_lambda, 1) : "-") << ")   true theta in all PUIs: " << covered << "/" << runs
-              << (empty ? "   EMPTY FPS in " + std::to_string(empty) + " runs" : "") << '\n';
-    std::cout << "    " << std::left << std::setw(18) << "parameter" << std::right << std::setw(6) << "true"
-              << std::setw(22) << "theta_c ours" << std::setw(9) << "paper" << std::setw(24) << "Delta theta ours"
-              << std::setw(10) << "paper" << '\n';
-    sets::app::Json js;
-    js["table"] = spec.name;
-    js["level"] = s.level;
-    js["N"] = spec.N;
-    js["lambda"] = spec.uniform ? "uniform" : "sin";
-    js["delta_e"] = s.delta_e;
-    js["runs"] = runs;
-    js["coefficient_time"] = tr.lagged_coefficients ? "lagged" : "current";
-    js["regressor_noise"] = sets::to_string(tr.regressor_errors);
-    js["snr_w"] = sw.mean;
-    js["snr_lambda"] = sl.mean;
-    js["theta_true"] = sets::app::to_json(theta);
-    std::vector<double> tcm, tcs, dtm, dts;
-    for (int l = 0; l < 6; ++l) {
-      const Stats a = stats(tc[l]), b = stats(dt[l]);
-      tcm.push_back(a.mean);
-      tcs.push_back(a.std);
-      dtm.push_back(b.mean);
-      dts.push_back(b.std);
-      std::cout << "    " << std::left << std::setw(18) << names[l] << std::right << std::setw(6) << fix(theta[l], 1)
-                << std::setw(22) << (fix(a.mean, 4) + " +- " + fix(a.std, 4)) << std::setw(9)
-                << (paper ? fix(paper->theta_c[l]) : "-") << std::setw(24)
-                << (sci(b.mean) + " +- " + sci(b.std)) << std::setw(10)
-                << (paper ? sci(paper->delta_theta[l]) : "-") << '\n';
-    }
-    js["theta_c_mean"] = tcm;
-    js["theta_c_std"] = tcs;
-    js["delta_theta_mean"] = dtm;
-    js["delta_theta_std"] = dts;
-    js["coverage"] = static_cast<double>(covered) / runs;
-    js["guaranteed_share"] = static_cast<double>(guaranteed) / runs;
-    js["empty_runs"] = empty;
-    js["orthants_mean"] = static_cast<double>(orthants) / runs;
-    js["feasible_orthants_mean"] = static_cast<double>(feasible_orthants) / runs;
-    double total = 0;
-    for (double x : seconds) total += x;
-    js["seconds"] = total;
-    if (paper) {
-      js["paper"] = {{"snr_w", paper->snr_w},
-                     {"snr_lambda", paper->snr_lambda},
-                     {"theta_c", std::vector<double>(paper->theta_c, paper->theta_c + 6)},
-                     {"delta_theta", std::vector<double>(paper->delta_theta, paper->delta_theta + 6)}};
-    }
-    std::cout << "    orthants examined per run " << fix(static_cast<double>(orthants) / runs, 2) << " (feasible "
-              << fix(static_cast<double>(feasible_orthants) / runs, 2) << "), every end certified in " << guaranteed
-              << "/" << runs << " runs, bounding time " << fix(1e3 * total / runs, 1) << " ms per run\n";
-    out["settings"].push_back(js);
+    const SettingSummary m = summarize(&results[si * static_cast<std::size_t>(runs)], runs);
+    all_covered = all_covered && m.covered == runs;
+    if (s.table != last_table) print_table_header(kTables[s.table], tr);
+    last_table = s.table;
+    print_setting(s, m, s.level > 0 ? &kTables[s.table].paper[s.level - 1] : nullptr, runs);
+    out["settings"].push_back(setting_json(s, m, tr));
   }
   std::cout << "\n" << (all_covered ? "coverage: the true theta was inside every PUI in every run (100%)"
                                     : "WARNING: the true theta was outside a PUI in some run")
@@ -221,4 +250,3 @@ int run_tables(const TableRuns& tr) {
   sets::app::write_json(tr.json_path, out);
   return 0;
 }
-

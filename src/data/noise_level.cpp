@@ -162,9 +162,8 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
   double plateau = 1e300;
   int order = 0;
   for (const auto& x : signals) {
-    int m = 0;
-    const double p = sigma_difference_plateau(x, &m);
-    if (p < plateau) plateau = p, order = m;
+    const DifferencePlateau p = difference_plateau(x);
+    if (p.sigma < plateau) plateau = p.sigma, order = p.order;
   }
   const std::string held = " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")";
   if (floor <= plateau) {
@@ -245,7 +244,7 @@ double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y) {
   return q;
 }
 
-double sigma_difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x, int* order) {
+DifferencePlateau difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x) {
   static const double central_binomial[] = {2, 6, 20, 70, 252, 924, 3432, 12870};  // C(2m, m)
   std::vector<double> s;
   VectorXd d = x;
@@ -253,7 +252,7 @@ double sigma_difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x, int*
     d = (d.tail(d.size() - 1) - d.head(d.size() - 1)).eval();
     s.push_back(clipped_rms(d) / std::sqrt(central_binomial[m - 1]));
   }
-  if (s.empty()) return 0;
+  if (s.empty()) return {};
   // For white noise sigma_{m+1} / sigma_m = 1; each further order multiplies a signal's share by
   // about sin(pi f) < 1, so a fall of more than 10 % means signal still dominates sigma_m.
   std::size_t pick = s.size() - 1;
@@ -262,8 +261,7 @@ double sigma_difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x, int*
       pick = i;
       break;
     }
-  if (order) *order = static_cast<int>(pick) + 1;
-  return s[pick];
+  return {s[pick], static_cast<int>(pick) + 1};
 }
 
 InputRepeats detect_repeats(const Eigen::Ref<const Eigen::MatrixXd>& inputs) {
@@ -418,10 +416,10 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
   }
   const VectorXd r = have_model ? VectorXd(y - simulated) : VectorXd(y);
   if (N < 64) {  // too short for a spectrum
-    int m = 0;
-    out.sigma = sigma_difference_plateau(r, &m);
+    const DifferencePlateau p = difference_plateau(r);
+    out.sigma = p.sigma;
     out.method = have_model ? NoiseMethod::residual_floor : NoiseMethod::output_spectrum;
-    out.reason = "plateau of the " + std::to_string(m) + "-th difference (" + std::to_string(N) + " samples: too few for a spectrum)";
+    out.reason = "plateau of the " + std::to_string(p.order) + "-th difference (" + std::to_string(N) + " samples: too few for a spectrum)";
   } else if (have_model) {
     const int L = static_cast<int>(std::min<Index>(64, std::max<Index>(8, N / 200)));
     const VectorXd s = simulated.array() - simulated.mean();

@@ -342,7 +342,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
   if (o.equation_error)
     for (const auto& c : candidates)
       if (current.derivative(c.equation) && !ee_base.count(c.equation)) {
-        const EquationErrorFit f = equation_error_fit(current, data, c.equation, 0, &column_noise);
+        const EquationErrorFit f = equation_error_fit(current, data, c.equation, 0, column_noise);
         ee_base[c.equation] = f.built ? f.relative_residual : -1;
       }
   std::vector<ScreenedHypothesis> hs(candidates.size());
@@ -361,7 +361,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
       const auto it = ee_base.find(candidates[i].equation);
       if (it != ee_base.end() && it->second > 0 && candidates[i].effect != "time_delay") {
         try {
-          const EquationErrorFit f = equation_error_fit(candidates[i].model, data, candidates[i].equation, 0, &column_noise);
+          const EquationErrorFit f = equation_error_fit(candidates[i].model, data, candidates[i].equation, 0, column_noise);
           if (f.built) {
             hs[i].ee_gain = 1 - (f.relative_residual * f.relative_residual) / (it->second * it->second);
             // Its estimates as another start (the nonlinear parameters from the best grid point).

@@ -709,123 +709,80 @@ namespace {
 // PUIs and, from the same LPs, bounds on max d^T theta for each direction (`maxima`): the
 // maximum over the orthant pieces that pui() visits. Everything it returns is in the scaled
 // coordinates z = theta ./ scale, and so are `directions` (see explore()).
-PuiResult explore_scaled(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const PuiOptions& options,
-                         const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima) {
-  const int p = fps.dimension();
-  maxima.assign(directions.size(), -inf);
-  PuiResult result;
-  result.lower_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
-  result.upper_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
-  bool any_feasible = false;  // some orthant gave floating-point LP points
-  bool have_box = false;      // some orthant contributed to result.box
-  bool have_unreliable = false;
-  bool all_certified = true;
-  int unknown_orthants = 0, empty_orthants = 0;
+// The orthants' outcomes gathered into one PUI: the hull of their boxes (certified with `safe`),
+// the floating-point estimate beside it, the points attaining each end, the support maxima.
+class OrthantHull {
+ public:
+  OrthantHull(int p, const PuiOptions& options, const std::vector<Eigen::VectorXd>& directions,
+              std::vector<double>& maxima)
+      : p_(p), options_(options), directions_(directions), maxima_(maxima) {
+    maxima_.assign(directions.size(), -inf);
+    result_.lower_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
+    result_.upper_points.setConstant(p, p, std::numeric_limits<double>::quiet_NaN());
+  }
 
-  auto absorb = [&](const Orthant& s, OrthantOutcome oc) {
-    result.lp_solves += oc.lps;
-    result.lp_fallbacks += oc.fallbacks;
+  void absorb(const Orthant& s, OrthantOutcome oc) {
+    result_.lp_solves += oc.lps;
+    result_.lp_fallbacks += oc.fallbacks;
     if (oc.status == OrthantStatus::unknown) {
       // Undecided: never counted as empty. The orthant itself bounds whatever lies in it.
-      ++unknown_orthants;
-      if (oc.box.size() != p) oc.box = orthant_box(s, p);
-      maxima.assign(directions.size(), inf);
+      ++unknown_orthants_;
+      if (oc.box.size() != p_) oc.box = orthant_box(s, p_);
+      maxima_.assign(directions_.size(), inf);
     }
-    if (oc.status == OrthantStatus::empty) ++empty_orthants;
-    result.orthants.push_back({s, oc.status, oc.box, oc.witness});
+    result_.orthants.push_back({s, oc.status, oc.box, oc.witness});
     if (oc.status == OrthantStatus::empty) return;
-    result.box = have_box ? hull(result.box, oc.box) : oc.box;
-    have_box = true;
+    result_.box = have_box_ ? hull(result_.box, oc.box) : oc.box;
+    have_box_ = true;
     const IntervalVector estimate = oc.status == OrthantStatus::feasible
                                         ? make_box(oc.float_lo.cwiseMin(oc.float_hi), oc.float_hi.cwiseMax(oc.float_lo))
                                         : oc.box;
-    result.unreliable_box = have_unreliable ? hull(result.unreliable_box, estimate) : estimate;
-    have_unreliable = true;
+    result_.unreliable_box = have_unreliable_ ? hull(result_.unreliable_box, estimate) : estimate;
+    have_unreliable_ = true;
     if (oc.status != OrthantStatus::feasible) return;
-    for (std::size_t k = 0; k < directions.size(); ++k) maxima[k] = std::max(maxima[k], oc.maxima[k]);
-    all_certified = all_certified && (oc.certified || !options.safe);
-    for (int l = 0; l < p; ++l) {
-      if (!any_feasible || oc.box[l].lower() <= result.box[l].lower())
-        result.lower_points.col(l) = oc.lower_points.col(l);
-      if (!any_feasible || oc.box[l].upper() >= result.box[l].upper())
-        result.upper_points.col(l) = oc.upper_points.col(l);
+    for (std::size_t k = 0; k < directions_.size(); ++k) maxima_[k] = std::max(maxima_[k], oc.maxima[k]);
+    all_certified_ = all_certified_ && (oc.certified || !options_.safe);
+    for (int l = 0; l < p_; ++l) {
+      if (!any_feasible_ || oc.box[l].lower() <= result_.box[l].lower())
+        result_.lower_points.col(l) = oc.lower_points.col(l);
+      if (!any_feasible_ || oc.box[l].upper() >= result_.box[l].upper())
+        result_.upper_points.col(l) = oc.upper_points.col(l);
     }
-    any_feasible = true;
-  };
-
-  bool searched_everywhere = true;  // every orthant that may hold part of the set was visited
-  if (!fps.has_interval_regressors()) {
-    absorb({}, solve_orthant(fps, scale, {}, options, directions));
-  } else if (options.orthants == OrthantSelection::all) {
-    for (const Orthant& s : all_orthants(p)) absorb(s, solve_orthant(fps, scale, s, options, directions));
-  } else {
-    // Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
-    // (theta_l = 0), the set may continue into the orthant across that face. An undecided
-    // orthant may touch every face; a decided one stays off a face only if its certified end
-    // proves it (with `safe`) — the floating-point end is an estimate, its tolerance only adds
-    // visits.
-    // The set need not be connected across faces (one sample with phi in [-1, 1] and
-    // phi theta in [1, 2] keeps theta away from 0 on both sides), so with `safe` every orthant
-    // the search did not reach is then searched too, unless a box proven from p samples
-    // (interval_system_box) misses it: an orthant is skipped only when proven empty.
-    const std::optional<IntervalVector> proven = interval_system_box(fps);
-    std::deque<Orthant> queue{sign_orthant(fps, fps.least_squares())};
-    const Orthant start = queue.front();
-    std::set<Orthant> seen{start};
-    while (!queue.empty()) {
-      Orthant s = queue.front();
-      queue.pop_front();
-      const OrthantOutcome oc = solve_orthant(fps, scale, s, options, directions);
-      absorb(s, oc);
-      if (oc.status == OrthantStatus::empty) continue;
-      double magnitude = 1;  // of the orthant's extents: the zero tolerance is relative to it
-      if (oc.status == OrthantStatus::feasible) {
-        for (int j = 0; j < p; ++j) {
-          if (std::isfinite(oc.float_lo[j])) magnitude = std::max(magnitude, std::abs(oc.float_lo[j]));
-          if (std::isfinite(oc.float_hi[j])) magnitude = std::max(magnitude, std::abs(oc.float_hi[j]));
-        }
-      }
-      const double tol = options.zero_tolerance * magnitude;
-      for (int j = 0; j < p; ++j) {
-        const int sign = s[static_cast<std::size_t>(j)];
-        if (sign == 0) continue;  // free: no face at theta_j = 0
-        // An uncertified extent is an estimate: its box reaches the face, so may the set.
-        // oc.box is the certified box with `safe` (the floating-point extent without).
-        const bool off_face = oc.status == OrthantStatus::feasible && (!options.safe || oc.certified) &&
-                              (sign > 0 ? oc.box[j].lower() > 0 && oc.float_lo[j] > tol
-                                        : oc.box[j].upper() < 0 && oc.float_hi[j] < -tol);
-        if (off_face) continue;
-        Orthant next = s;
-        next[static_cast<std::size_t>(j)] = -next[static_cast<std::size_t>(j)];
-        if (proven && box_misses_orthant(*proven, next)) continue;  // proven empty
-        if (seen.insert(next).second) queue.push_back(next);
-      }
-    }
-    // A certified-empty starting orthant says nothing about the others, and with `safe` no
-    // orthant is left out unproven: search the rest (the floating-point answer, !safe, keeps
-    // the paper's shortcut).
-    if (!have_box || options.safe) {
-      const std::optional<std::vector<Orthant>> rest = orthants_to_search(start, proven);
-      if (rest) {
-        for (const Orthant& s : *rest)
-          if (!seen.count(s)) absorb(s, solve_orthant(fps, scale, s, options, directions));
-      } else {
-        searched_everywhere = false;
-      }
-    }
+    any_feasible_ = true;
   }
 
+  bool has_box() const { return have_box_; }
+  PuiResult finish(const FeasibleParameterSet& fps, bool searched_everywhere);
+
+ private:
+  void decide_consistency(const FeasibleParameterSet& fps, bool searched_everywhere);
+
+  const int p_;
+  const PuiOptions& options_;
+  const std::vector<Eigen::VectorXd>& directions_;
+  std::vector<double>& maxima_;
+  PuiResult result_;
+  bool any_feasible_ = false;     // some orthant gave floating-point LP points
+  bool have_box_ = false;         // some orthant contributed to result_.box
+  bool have_unreliable_ = false;
+  bool all_certified_ = true;
+  int unknown_orthants_ = 0;
+};
+
+// A witness proves consistency; only a search of every orthant that found no box proves the
+// data falsify the model; anything else is unknown, with the reason.
+void OrthantHull::decide_consistency(const FeasibleParameterSet& fps, bool searched_everywhere) {
   const bool any_witness =
-      std::any_of(result.orthants.begin(), result.orthants.end(), [](const OrthantReport& o) { return o.witness; });
-  ConsistencyVerdict& verdict = result.consistency;
+      std::any_of(result_.orthants.begin(), result_.orthants.end(), [](const OrthantReport& o) { return o.witness; });
+  ConsistencyVerdict& verdict = result_.consistency;
   if (any_witness) {
     verdict.falsified = Falsified::no;
-  } else if (!have_box && searched_everywhere) {
+  } else if (!have_box_ && searched_everywhere) {
     verdict.falsified = Falsified::yes;
   } else {
     verdict.falsified = Falsified::unknown;
-    if (unknown_orthants > 0)
-      verdict.reason = std::to_string(unknown_orthants) + (unknown_orthants == 1 ? " orthant" : " orthants") +
+    if (unknown_orthants_ > 0)
+      verdict.reason = std::to_string(unknown_orthants_) + (unknown_orthants_ == 1 ? " orthant" : " orthants") +
                        " of the parameter space had no feasible point in floating point, but no certificate of "
                        "emptiness could be verified";
     else if (!searched_everywhere)
@@ -835,23 +792,107 @@ PuiResult explore_scaled(const FeasibleParameterSet& fps, const Eigen::VectorXd&
       verdict.reason = "the LPs found parameter values, but none could be proven to satisfy every sample "
                        "(the set may be flat, or empty within rounding)";
   }
-  if (verdict.falsified != Falsified::no && (unknown_orthants > 0 || verdict.falsified == Falsified::yes)) {
+  if (verdict.falsified != Falsified::no && (unknown_orthants_ > 0 || verdict.falsified == Falsified::yes)) {
     try {
       verdict.conflict = find_conflict(fps);  // a report; the verdict does not rest on it
     } catch (const NumericalError&) {
     }
   }
-  if (verdict.falsified == Falsified::yes) {
-    result.box = IntervalVector();
-    result.guaranteed = true;
-    maxima.assign(directions.size(), -inf);
-    return result;
+}
+
+PuiResult OrthantHull::finish(const FeasibleParameterSet& fps, bool searched_everywhere) {
+  decide_consistency(fps, searched_everywhere);
+  if (result_.consistency.falsified == Falsified::yes) {
+    result_.box = IntervalVector();
+    result_.guaranteed = true;
+    maxima_.assign(directions_.size(), -inf);
+    return result_;
   }
-  if (!have_box) result.box = orthant_box({}, p);  // nothing searched could bound the rest
-  if (!have_unreliable) result.unreliable_box = result.box;
-  result.guaranteed = options.safe && all_certified && searched_everywhere;
-  result.central = midpoint(result.box);
-  return result;
+  if (!have_box_) result_.box = orthant_box({}, p_);  // nothing searched could bound the rest
+  if (!have_unreliable_) result_.unreliable_box = result_.box;
+  result_.guaranteed = options_.safe && all_certified_ && searched_everywhere;
+  result_.central = midpoint(result_.box);
+  return result_;
+}
+
+// The orthants across the faces theta_j = 0 that the set may reach from orthant s.
+std::vector<Orthant> neighbours_to_visit(const Orthant& s, const OrthantOutcome& oc, const PuiOptions& options,
+                                         const std::optional<IntervalVector>& proven) {
+  std::vector<Orthant> out;
+  if (oc.status == OrthantStatus::empty) return out;
+  const auto p = static_cast<int>(s.size());
+  double magnitude = 1;  // of the orthant's extents: the zero tolerance is relative to it
+  if (oc.status == OrthantStatus::feasible) {
+    for (int j = 0; j < p; ++j) {
+      if (std::isfinite(oc.float_lo[j])) magnitude = std::max(magnitude, std::abs(oc.float_lo[j]));
+      if (std::isfinite(oc.float_hi[j])) magnitude = std::max(magnitude, std::abs(oc.float_hi[j]));
+    }
+  }
+  const double tol = options.zero_tolerance * magnitude;
+  for (int j = 0; j < p; ++j) {
+    const int sign = s[static_cast<std::size_t>(j)];
+    if (sign == 0) continue;  // free: no face at theta_j = 0
+    // An uncertified extent is an estimate: its box reaches the face, so may the set.
+    // oc.box is the certified box with `safe` (the floating-point extent without).
+    const bool off_face = oc.status == OrthantStatus::feasible && (!options.safe || oc.certified) &&
+                          (sign > 0 ? oc.box[j].lower() > 0 && oc.float_lo[j] > tol
+                                    : oc.box[j].upper() < 0 && oc.float_hi[j] < -tol);
+    if (off_face) continue;
+    Orthant next = s;
+    next[static_cast<std::size_t>(j)] = -next[static_cast<std::size_t>(j)];
+    if (proven && box_misses_orthant(*proven, next)) continue;  // proven empty
+    out.push_back(next);
+  }
+  return out;
+}
+
+// Remark 2: start in the least-squares orthant; whenever a bound lands on a coordinate face
+// (theta_l = 0), the set may continue into the orthant across that face. An undecided orthant
+// may touch every face; a decided one stays off a face only if its certified end proves it (with
+// `safe`) — the floating-point end is an estimate, its tolerance only adds visits.
+// The set need not be connected across faces (one sample with phi in [-1, 1] and phi theta in
+// [1, 2] keeps theta away from 0 on both sides), so with `safe` every orthant the search did not
+// reach is then searched too, unless a box proven from p samples (interval_system_box) misses it:
+// an orthant is skipped only when proven empty. Returns whether every orthant that may hold part
+// of the set was visited.
+bool search_remark2(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const PuiOptions& options,
+                    const std::vector<Eigen::VectorXd>& directions, OrthantHull& hull_of) {
+  const std::optional<IntervalVector> proven = interval_system_box(fps);
+  std::deque<Orthant> queue{sign_orthant(fps, fps.least_squares())};
+  const Orthant start = queue.front();
+  std::set<Orthant> seen{start};
+  while (!queue.empty()) {
+    Orthant s = queue.front();
+    queue.pop_front();
+    const OrthantOutcome oc = solve_orthant(fps, scale, s, options, directions);
+    hull_of.absorb(s, oc);
+    for (const Orthant& next : neighbours_to_visit(s, oc, options, proven))
+      if (seen.insert(next).second) queue.push_back(next);
+  }
+  // A certified-empty starting orthant says nothing about the others, and with `safe` no orthant
+  // is left out unproven: search the rest (the floating-point answer, !safe, keeps the paper's
+  // shortcut).
+  if (hull_of.has_box() && !options.safe) return true;
+  const std::optional<std::vector<Orthant>> rest = orthants_to_search(start, proven);
+  if (!rest) return false;
+  for (const Orthant& s : *rest)
+    if (!seen.count(s)) hull_of.absorb(s, solve_orthant(fps, scale, s, options, directions));
+  return true;
+}
+
+PuiResult explore_scaled(const FeasibleParameterSet& fps, const Eigen::VectorXd& scale, const PuiOptions& options,
+                         const std::vector<Eigen::VectorXd>& directions, std::vector<double>& maxima) {
+  const int p = fps.dimension();
+  OrthantHull hull_of(p, options, directions, maxima);
+  bool searched_everywhere = true;
+  if (!fps.has_interval_regressors()) {
+    hull_of.absorb({}, solve_orthant(fps, scale, {}, options, directions));
+  } else if (options.orthants == OrthantSelection::all) {
+    for (const Orthant& s : all_orthants(p)) hull_of.absorb(s, solve_orthant(fps, scale, s, options, directions));
+  } else {
+    searched_everywhere = search_remark2(fps, scale, options, directions, hull_of);
+  }
+  return hull_of.finish(fps, searched_everywhere);
 }
 
 // Column scaling by powers of 2 (exact): theta_j = d_j z_j with d_j = 2^-e_j, 2^e_j about the

@@ -109,14 +109,7 @@ void read_units(const ojson& j, ModelFile& m) {
   }
 }
 
-}  // namespace
-
-ModelFile parse_model(const std::string& text, const std::string& source) {
-  // Malformed JSON, 1e400 and absurd nesting: InputError with line and column.
-  ojson j = parse_ordered_json_text(text, source);
-  if (!j.is_object()) fail(source, "the model must be a JSON object");
-  ModelFile m;
-  m.source = source;
+void check_known_fields(const ojson& j, const std::string& source) {
   static const char* known[] = {"name",    "time",    "sample_time", "inputs",      "parameters",
                                 "states",  "signals", "sampled",     "derivatives", "outputs",
                                 "format_version", "intersample", "units"};
@@ -127,6 +120,11 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   }
   if (j.contains("format_version") && number(j["format_version"], source, "format_version") != 1)
     fail(source, "unsupported format_version (this reader knows version 1)");
+}
+
+// "name", and the time base: a time column, a sample time, or both.
+void read_name_and_time(const ojson& j, ModelFile& m) {
+  const std::string& source = m.source;
   if (j.contains("name")) {
     if (!j["name"].is_string()) fail(source, "field \"name\" must be a string");
     m.name = j["name"].get<std::string>();
@@ -141,45 +139,55 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   }
   if (m.time_column.empty() && !m.sample_time)
     fail(source, "give either \"time\" (a column) or \"sample_time\" (in s)");
-  m.inputs = read_texts(j, "inputs", source, false);
-  // How each input behaves between samples (sets/data/intersample.hpp reads the values).
-  m.intersample = read_texts(j, "intersample", source, false);
+}
+
+// How each input behaves between samples (sets/data/intersample.hpp reads the values).
+void read_intersample(const ojson& j, ModelFile& m) {
+  m.intersample = read_texts(j, "intersample", m.source, false);
   for (const auto& [input, mode] : m.intersample) {
     bool is_input = false;
     for (const auto& in : m.inputs) is_input = is_input || in.first == input;
-    if (!is_input) fail(source, "\"intersample." + input + "\" is not an input");
+    if (!is_input) fail(m.source, "\"intersample." + input + "\" is not an input");
     if (mode != "zoh" && mode != "foh" && mode != "bl")
-      fail(source, "field \"intersample." + input + "\" must be \"zoh\" (held), \"foh\" (linear) or \"bl\" (band-limited)");
+      fail(m.source, "field \"intersample." + input + "\" must be \"zoh\" (held), \"foh\" (linear) or \"bl\" (band-limited)");
   }
-  if (j.contains("parameters")) {
-    const auto& ps = j["parameters"];
-    if (!ps.is_object()) fail(source, "field \"parameters\" must be an object");
-    for (auto it = ps.begin(); it != ps.end(); ++it) {
-      ModelParameter p;
-      p.name = it.key();
-      const std::string f = "parameters." + printable(p.name, 100);
-      if (it.value().is_number()) {
-        p.value = it.value().get<double>();
-      } else if (it.value().is_object()) {
-        const auto& o = it.value();
-        for (auto k = o.begin(); k != o.end(); ++k)
-          if (k.key() != "value" && k.key() != "fixed" && k.key() != "min" && k.key() != "max")
-            fail(source, "unknown field \"" + f + "." + printable(k.key(), 100) + "\"");
-        if (!o.contains("value")) fail(source, "missing field \"" + f + ".value\"");
-        p.value = number(o["value"], source, f + ".value");
-        if (o.contains("fixed")) {
-          if (!o["fixed"].is_boolean()) fail(source, "field \"" + f + ".fixed\" must be true or false");
-          p.fixed = o["fixed"].get<bool>();
-        }
-        if (o.contains("min")) p.min = number(o["min"], source, f + ".min");
-        if (o.contains("max")) p.max = number(o["max"], source, f + ".max");
-        if (p.min > p.max) fail(source, "field \"" + f + "\": min > max");
-      } else {
-        fail(source, "field \"" + f + "\" must be a number or {\"value\": ...}");
-      }
-      m.parameters.push_back(p);
-    }
+}
+
+// One entry of "parameters": a number, or {"value", "fixed", "min", "max"}.
+ModelParameter read_parameter(const std::string& name, const ojson& v, const std::string& source) {
+  ModelParameter p;
+  p.name = name;
+  const std::string f = "parameters." + printable(p.name, 100);
+  if (v.is_number()) {
+    p.value = v.get<double>();
+    return p;
   }
+  if (!v.is_object()) fail(source, "field \"" + f + "\" must be a number or {\"value\": ...}");
+  for (auto k = v.begin(); k != v.end(); ++k)
+    if (k.key() != "value" && k.key() != "fixed" && k.key() != "min" && k.key() != "max")
+      fail(source, "unknown field \"" + f + "." + printable(k.key(), 100) + "\"");
+  if (!v.contains("value")) fail(source, "missing field \"" + f + ".value\"");
+  p.value = number(v["value"], source, f + ".value");
+  if (v.contains("fixed")) {
+    if (!v["fixed"].is_boolean()) fail(source, "field \"" + f + ".fixed\" must be true or false");
+    p.fixed = v["fixed"].get<bool>();
+  }
+  if (v.contains("min")) p.min = number(v["min"], source, f + ".min");
+  if (v.contains("max")) p.max = number(v["max"], source, f + ".max");
+  if (p.min > p.max) fail(source, "field \"" + f + "\": min > max");
+  return p;
+}
+
+void read_parameters(const ojson& j, ModelFile& m) {
+  if (!j.contains("parameters")) return;
+  const auto& ps = j["parameters"];
+  if (!ps.is_object()) fail(m.source, "field \"parameters\" must be an object");
+  for (auto it = ps.begin(); it != ps.end(); ++it) m.parameters.push_back(read_parameter(it.key(), it.value(), m.source));
+}
+
+// "states": each with a number or a column giving its initial value.
+void read_states(const ojson& j, ModelFile& m) {
+  const std::string& source = m.source;
   if (!j.contains("states")) fail(source, "missing field \"states\"");
   if (!j["states"].is_object()) fail(source, "field \"states\" must be an object");
   for (auto it = j["states"].begin(); it != j["states"].end(); ++it) {
@@ -193,10 +201,11 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
       fail(source, "field \"states." + printable(s.name, 100) + "\" must be a number or a column name");
     m.states.push_back(s);
   }
-  m.signals = read_texts(j, "signals", source, false);
-  m.sampled = read_texts(j, "sampled", source, false);
-  m.derivatives = read_texts(j, "derivatives", source, true);
-  m.outputs = read_texts(j, "outputs", source, true);
+}
+
+// One derivative per state and no other; one name, one meaning; outputs of known symbols.
+void check_structure(const ModelFile& m) {
+  const std::string& source = m.source;
   if (m.outputs.empty()) fail(source, "field \"outputs\" is empty");
   for (const auto& s : m.states)
     if (!m.derivative(s.name)) fail(source, "state \"" + printable(s.name, 100) + "\" has no entry in \"derivatives\"");
@@ -205,7 +214,6 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
     for (const auto& s : m.states) found = found || s.name == d.first;
     if (!found) fail(source, "\"derivatives." + printable(d.first, 100) + "\" is not a state");
   }
-  // One name, one meaning.
   std::vector<std::string> names = {"t", "Ts"};
   auto add = [&](const std::string& n, const char* where) {
     if (const std::string problem = symbol_name_problem(n); !problem.empty())
@@ -221,6 +229,27 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   for (const auto& e : m.sampled) add(e.first, "sampled");
   for (const auto& o : m.outputs)
     if (!m.has_symbol(o.first)) fail(source, "unknown symbol \"" + printable(o.first, 100) + "\" in \"outputs\"");
+}
+
+}  // namespace
+
+ModelFile parse_model(const std::string& text, const std::string& source) {
+  // Malformed JSON, 1e400 and absurd nesting: InputError with line and column.
+  ojson j = parse_ordered_json_text(text, source);
+  if (!j.is_object()) fail(source, "the model must be a JSON object");
+  ModelFile m;
+  m.source = source;
+  check_known_fields(j, source);
+  read_name_and_time(j, m);
+  m.inputs = read_texts(j, "inputs", source, false);
+  read_intersample(j, m);
+  read_parameters(j, m);
+  read_states(j, m);
+  m.signals = read_texts(j, "signals", source, false);
+  m.sampled = read_texts(j, "sampled", source, false);
+  m.derivatives = read_texts(j, "derivatives", source, true);
+  m.outputs = read_texts(j, "outputs", source, true);
+  check_structure(m);
   read_units(j, m);
   return m;
 }

@@ -79,10 +79,14 @@ IntervalVector make_box(const Eigen::Ref<const Eigen::VectorXd>& lo,
   return b;
 }
 
-IntervalVector multiply(const IntervalMatrix& A, const IntervalVector& x) {
+namespace {
+
+// A x for a point or interval matrix A: one rounding-mode switch per call (pure interval work).
+template <class Matrix>
+IntervalVector multiply_enclosure(const Matrix& A, const IntervalVector& x) {
   if (A.cols() != x.size()) throw InputError("multiply: dimensions do not match");
   IntervalVector r(A.rows());
-  RoundingScope upward;  // pure interval work: one rounding-mode switch per call
+  RoundingScope upward;
   for (Eigen::Index i = 0; i < A.rows(); ++i) {
     UnprotectedInterval s(0.0);
     for (Eigen::Index j = 0; j < A.cols(); ++j) s += UnprotectedInterval(A(i, j)) * UnprotectedInterval(x[j]);
@@ -91,17 +95,11 @@ IntervalVector multiply(const IntervalMatrix& A, const IntervalVector& x) {
   return r;
 }
 
-IntervalVector multiply(const Eigen::MatrixXd& A, const IntervalVector& x) {
-  if (A.cols() != x.size()) throw InputError("multiply: dimensions do not match");
-  IntervalVector r(A.rows());
-  RoundingScope upward;  // pure interval work: one rounding-mode switch per call
-  for (Eigen::Index i = 0; i < A.rows(); ++i) {
-    UnprotectedInterval s(0.0);
-    for (Eigen::Index j = 0; j < A.cols(); ++j) s += UnprotectedInterval(A(i, j)) * UnprotectedInterval(x[j]);
-    r[i] = s;
-  }
-  return r;
-}
+}  // namespace
+
+IntervalVector multiply(const IntervalMatrix& A, const IntervalVector& x) { return multiply_enclosure(A, x); }
+
+IntervalVector multiply(const Eigen::MatrixXd& A, const IntervalVector& x) { return multiply_enclosure(A, x); }
 
 bool contains(const IntervalVector& box, const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (box.size() != x.size()) throw InputError("contains: dimensions do not match");

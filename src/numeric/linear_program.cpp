@@ -435,6 +435,34 @@ bool decided(const SimplexRun& r) {
          (r.prim == GLP_FEAS && r.dual == GLP_NOFEAS);
 }
 
+// GLPK's primal, reduced costs and row duals after a solve, in the problem's own objective scale
+// (GLPK holds f * c); returns GLPK's iteration count.
+int read_solution(glp_prob* lp, int n, int m, double f, const char* where, LpSolution& s) {
+  s.x.resize(n);
+  s.reduced_cost.resize(n);
+  s.row_dual.resize(m);
+  double* x = s.x.data();
+  double* d = s.reduced_cost.data();
+  double* y = s.row_dual.data();
+  double objective = 0;
+  int iterations = 0;
+  double* pobj = &objective;
+  int* pit = &iterations;
+  call_glpk(where, [=] {
+    *pobj = glp_get_obj_val(lp);
+    *pit = glp_get_it_cnt(lp);
+    for (int j = 0; j < n; ++j) {
+      x[j] = glp_get_col_prim(lp, j + 1);
+      d[j] = glp_get_col_dual(lp, j + 1);
+    }
+    for (int i = 0; i < m; ++i) y[i] = glp_get_row_dual(lp, i + 1);
+  });
+  s.objective = objective / f;
+  s.row_dual /= f;
+  s.reduced_cost /= f;
+  return iterations;
+}
+
 }  // namespace
 
 // Recovery, in order, until GLPK gives a verdict: (1) dual simplex from the last basis on the
@@ -521,29 +549,7 @@ LpSolution LinearProgram::solve(const LpSolveOptions& options) {
     s.status = LpStatus::unbounded;
   }
   const int n = impl_->n(), m = impl_->m();
-  s.x.resize(n);
-  s.reduced_cost.resize(n);
-  s.row_dual.resize(m);
-  double* x = s.x.data();
-  double* d = s.reduced_cost.data();
-  double* y = s.row_dual.data();
-  double objective = 0;
-  int iterations = 0;
-  double* pobj = &objective;
-  int* pit = &iterations;
-  call_glpk("LinearProgram::solve", [=] {
-    *pobj = glp_get_obj_val(lp);
-    *pit = glp_get_it_cnt(lp);
-    for (int j = 0; j < n; ++j) {
-      x[j] = glp_get_col_prim(lp, j + 1);
-      d[j] = glp_get_col_dual(lp, j + 1);
-    }
-    for (int i = 0; i < m; ++i) y[i] = glp_get_row_dual(lp, i + 1);
-  });
-  s.objective = objective / f;
-  s.iterations = iterations;
-  s.row_dual /= f;
-  s.reduced_cost /= f;
+  s.iterations = read_solution(lp, n, m, f, "LinearProgram::solve", s);
   if (s.status == LpStatus::optimal && (!std::isfinite(s.objective) || !s.x.allFinite() || !s.row_dual.allFinite()))
     throw NumericalError("LP solver returned a non-finite optimum on a problem with " + std::to_string(m) + " rows and " +
                          std::to_string(n) + " columns");
@@ -573,27 +579,7 @@ LpSolution LinearProgram::solve_exact() {
     case GLP_UNBND: s.status = LpStatus::unbounded; break;
     default: throw NumericalError("exact LP solver ended without a verdict");
   }
-  const int n = impl_->n(), m = impl_->m();
-  s.x.resize(n);
-  s.reduced_cost.resize(n);
-  s.row_dual.resize(m);
-  double* x = s.x.data();
-  double* d = s.reduced_cost.data();
-  double* y = s.row_dual.data();
-  double objective = 0;
-  double* pobj = &objective;
-  call_glpk("LinearProgram::solve_exact", [=] {
-    *pobj = glp_get_obj_val(lp);
-    for (int j = 0; j < n; ++j) {
-      x[j] = glp_get_col_prim(lp, j + 1);
-      d[j] = glp_get_col_dual(lp, j + 1);
-    }
-    for (int i = 0; i < m; ++i) y[i] = glp_get_row_dual(lp, i + 1);
-  });
-  const double f = impl_->obj_factor;
-  s.objective = objective / f;
-  s.row_dual /= f;
-  s.reduced_cost /= f;
+  s.iterations = read_solution(lp, impl_->n(), impl_->m(), impl_->obj_factor, "LinearProgram::solve_exact", s);
   return s;
 }
 

@@ -12,16 +12,25 @@
 
 using namespace sets;
 
+namespace {
+
+// The Coulomb plant's nominal with the friction term and its free parameter Fc added.
+ModelFile with_coulomb_friction(ModelFile m) {
+  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
+  ModelParameter fc;
+  fc.name = "Fc";
+  m.parameters.push_back(fc);
+  return m;
+}
+
+}  // namespace
+
 // Equation-error PUIs of the Coulomb plant's force balance, measured at values a little off the
 // truth (as an estimate would be): every true parameter must lie in its interval, and the
 // parameters that enter nonlinearly or through prev() are refused with a reason.
 TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
-  ModelFile m = p.nominal;
-  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
-  ModelParameter fc;
-  fc.name = "Fc";
-  m.parameters.push_back(fc);
+  ModelFile m = with_coulomb_friction(p.nominal);
   const std::vector<std::pair<std::string, double>> truth{{"m", 1.0}, {"k", 4.0}, {"c", 0.8}, {"Fc", 0.3}};
   const std::vector<double> off{1.03, 3.9, 0.84, 0.28};
   for (std::size_t i = 0; i < truth.size(); ++i) m.parameter(truth[i].first)->value = off[i];
@@ -52,16 +61,12 @@ TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
 // interval regressors), so the cache can neither be ignored nor disagree unnoticed.
 TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
-  ModelFile m = p.nominal;
-  *m.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v))/m";
-  ModelParameter fc;
-  fc.name = "Fc";
-  m.parameters.push_back(fc);
+  ModelFile m = with_coulomb_friction(p.nominal);
   const int w = 20;
   const ColumnNoise noise = measured_noise(m, p.estimation);
   ASSERT_EQ(noise.size(), m.outputs.size());
   const EquationErrorRegression inside = equation_error_regressions(m, p.estimation, "v", {w}).front();
-  const EquationErrorRegression passed = equation_error_regressions(m, p.estimation, "v", {w}, &noise).front();
+  const EquationErrorRegression passed = equation_error_regressions(m, p.estimation, "v", {w}, noise).front();
   ASSERT_TRUE(inside.built) << inside.note;
   ASSERT_TRUE(passed.built) << passed.note;
   ASSERT_EQ(inside.Phi.rows(), passed.Phi.rows());
@@ -69,7 +74,7 @@ TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
   int differ = 0;
   ColumnNoise louder = noise;
   for (auto& [column, sigma] : louder) sigma *= 10;
-  const EquationErrorRegression loud = equation_error_regressions(m, p.estimation, "v", {w}, &louder).front();
+  const EquationErrorRegression loud = equation_error_regressions(m, p.estimation, "v", {w}, louder).front();
   ASSERT_TRUE(loud.built) << loud.note;
   for (Eigen::Index i = 0; i < inside.Phi.rows(); ++i)
     for (Eigen::Index j = 0; j < inside.Phi.cols(); ++j) {
@@ -78,7 +83,7 @@ TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
       differ += loud.Phi(i, j).lower() != inside.Phi(i, j).lower() || loud.Phi(i, j).upper() != inside.Phi(i, j).upper();
     }
   EXPECT_GT(differ, 0);
-  const EquationErrorFit a = equation_error_fit(m, p.estimation, "v"), b = equation_error_fit(m, p.estimation, "v", 0, &noise);
+  const EquationErrorFit a = equation_error_fit(m, p.estimation, "v"), b = equation_error_fit(m, p.estimation, "v", 0, noise);
   ASSERT_TRUE(a.built && b.built);
   EXPECT_EQ(a.estimate, b.estimate);
   EXPECT_EQ(a.relative_residual, b.relative_residual);

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sets/examples/hakvoort.hpp"
@@ -50,6 +51,43 @@ struct FirstOrderSum {
     return y;
   }
 };
+
+// The stochastic data sets of the hinf_bound Monte Carlo tests: 600 uniform inputs, G0's output
+// plus coloured noise v(t) = 0.8 v(t-1) + e(t), e ~ N(0, 0.1^2). One generator per test; its
+// distributions live across runs (std::normal_distribution caches a value), so the runs are the
+// same as drawing them in the test's loop.
+class ColouredNoiseRuns {
+ public:
+  ColouredNoiseRuns(FirstOrderSum G0, unsigned seed) : G0_(std::move(G0)), rng_(seed) {}
+  struct Run {
+    Eigen::VectorXd u, y;
+  };
+  Run next() {
+    Eigen::VectorXd u(600), e(600), v(600);
+    for (auto& x : u) x = U_(rng_);
+    for (auto& x : e) x = noise_(rng_);
+    v[0] = e[0];
+    for (int t = 1; t < 600; ++t) v[t] = 0.8 * v[t - 1] + e[t];
+    return {u, G0_.simulate(u) + v};
+  }
+
+ private:
+  FirstOrderSum G0_;
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> U_{-1, 1};
+  std::normal_distribution<double> noise_{0, 0.1};
+};
+
+// Options for a bounded-noise run |v(t)| <= v_bar: a weight of the given degree, 4 iterations of
+// the nominal fit (the tests' systems converge in fewer).
+inline HinfBoundOptions bounded_noise_options(double v_bar, int weight_degree) {
+  HinfBoundOptions o;
+  o.uncertainty.noise = NoiseModel::bounded;
+  o.uncertainty.v_bar = v_bar;
+  o.weight.degree = weight_degree;
+  o.nominal.iterations = 4;
+  return o;
+}
 
 // First-order G0 = 0.5 z^-1 / (1 - 0.5 z^-1), 300 uniform inputs, uniform output noise of the
 // given amplitude; FIR basis of order 6, priors M = 1, rho = 0.6, the noise bound v_bar claimed.

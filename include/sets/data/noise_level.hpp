@@ -67,7 +67,11 @@ InputRepeats detect_repeats(const Eigen::Ref<const Eigen::MatrixXd>& inputs);
 double sigma_from_repeats(const Eigen::Ref<const Eigen::VectorXd>& y, const InputRepeats& repeats);
 
 /// sigma_m = clipped RMS of the m-th difference / sqrt(C(2m, m)), m = 1..8, at the first m whose
-/// successor falls by less than 10 % (a white plateau); the order chosen is returned in `order`.
-double sigma_difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x, int* order = nullptr);
+/// successor falls by less than 10 % (a white plateau), and that order m (0: fewer than 2 samples).
+struct DifferencePlateau {
+  double sigma = 0;
+  int order = 0;
+};
+DifferencePlateau difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x);
 
 }  // namespace sets

@@ -61,11 +61,11 @@ struct EquationErrorRegression {
   int rows = 0, window = 0, order = 0;
 };
 /// One regression per window (samples). Never throws for a model it cannot handle.
-/// `noise`: the columns' noise levels when the caller has them (a column missing from it, or
-/// nullptr: estimated here).
+/// `noise`: the columns' noise levels when the caller has them (a column missing from it is
+/// estimated here).
 std::vector<EquationErrorRegression> equation_error_regressions(const ModelFile& model, const Recording& data,
                                                                const std::string& state, const std::vector<int>& windows,
-                                                               const ColumnNoise* noise = nullptr);
+                                                               const ColumnNoise& noise = {});
 /// The windows tried by default: N/500 .. N/25 samples within [4, 500], N >= 8 w.
 std::vector<int> equation_error_windows(int samples);
 
@@ -79,7 +79,7 @@ struct EquationErrorFit {
   double relative_residual = 1;  // ||Y - Phi theta|| / ||Y - mean Y|| (0: exact)
 };
 EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window = 0,
-                                    const ColumnNoise* noise = nullptr);
+                                    const ColumnNoise& noise = {});
 
 /// PUIs of the free parameters of the equation of `state`, with the model's parameter values as
 /// the estimate the bound is measured at. Never throws for a model it cannot handle: `built` is

@@ -169,11 +169,9 @@ TvBoundResult linf_bound(const TvBoundData& data, const LinfBoundOptions& option
   return r;
 }
 
-TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o) {
-  data.validate();
-  const auto t0 = Clock::now();
-  const int N = data.samples(), q = data.parameters(), l = data.outputs();
-  const Eigen::VectorXd F = diagonal_or_ones(o.F, q, "sparse_bound: F");
+namespace {
+
+void check_sparse_options(const SparseBoundOptions& o, int N, int q, int l) {
   if (o.mu.size() != q || !o.mu.allFinite() || (o.mu.array() <= 0).any())
     throw InputError("sparse_bound: mu needs one positive threshold per parameter (" + std::to_string(q) + ")");
   if (o.max_abs.size() != q || !o.max_abs.allFinite() || (o.max_abs.array() <= 0).any())
@@ -182,39 +180,55 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
   if (o.epsilon.size() != l || !o.epsilon.allFinite() || (o.epsilon.array() < 0).any())
     throw InputError("sparse_bound: epsilon needs one non-negative window-norm bound per output (" +
                      std::to_string(l) + "), e.g. linf_bound(...).epsilon");
-  const bool has_start = o.start.size() > 0;
-  if (has_start && (o.start.rows() != N || o.start.cols() != q))
+  if (o.start.size() > 0 && (o.start.rows() != N || o.start.cols() != q))
     throw InputError("sparse_bound: the start trajectory is " + std::to_string(o.start.rows()) + " x " +
                      std::to_string(o.start.cols()) + ", expected " + std::to_string(N) + " x " + std::to_string(q));
   if (o.grid < 1) throw InputError("sparse_bound: grid must be >= 1 (1 = a jump may occur at every sample)");
   if (!(o.epsilon_slack >= 0) || !std::isfinite(o.epsilon_slack))
     throw InputError("sparse_bound: epsilon_slack must be finite and >= 0");
-  if (o.solver == SparseSolver::jump_search) {
-    TvBoundResult r = detail::jump_search(data, o);
-    r.epsilon = o.epsilon;
-    fill_result(data, stack_samples(r.pi), o.mu, r);
-    r.seconds = seconds_since(t0);
-    return r;
-  }
-  const WindowNormBall ball = data.ball();
-  const Eigen::VectorXd offset = stack_samples(data.y) - data.regression.upsilon;
-  const Eigen::VectorXd eps = o.epsilon * (1 + o.epsilon_slack);
+}
 
-  LinearProgram lp(N * q);
+// The MILP (14): pi (N x q) within max_abs, the peak t_F, one or two binaries per difference
+// Delta pi_i(k) (13), the window-norm rows; minimise t_F + the number of jumps.
+struct SparseMilp {
+  SparseMilp(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& F);
+  int bin(int k, int i, int which) const { return first_bin + ((k - k0) * q + i) * per + which; }
+  Eigen::VectorXd start_point(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& F) const;
+
+  const int N, q, k0, per;
+  const Eigen::VectorXd offset;
+  LinearProgram lp;
+  int tF = -1, first_bin = -1;
+  WindowNormBall::LpBlock blk;
+
+ private:
+  void add_jump_rows(const SparseBoundOptions& o);
+};
+
+SparseMilp::SparseMilp(const TvBoundData& data, const SparseBoundOptions& o, const Eigen::VectorXd& F)
+    : N(data.samples()), q(data.parameters()), k0(o.initial_difference ? 0 : 1),
+      per(o.formulation == SparseFormulation::paper ? 2 : 1),
+      offset(stack_samples(data.y) - data.regression.upsilon), lp(N * q) {
   for (int k = 0; k < N; ++k)
     for (int i = 0; i < q; ++i) lp.set_variable_bounds(k * q + i, -o.max_abs[i], o.max_abs[i]);
-  const int tF = lp.add_variables(1, 0, inf);
+  tF = lp.add_variables(1, 0, inf);
   add_peak_rows(lp, N, q, F, tF, false, o.initial_difference);
-  // (13): one or two binaries per difference Delta pi_i(k).
-  const int k0 = o.initial_difference ? 0 : 1;
-  const int per = o.formulation == SparseFormulation::paper ? 2 : 1;
-  const int first_bin = lp.add_variables((N - k0) * q * per, 0, 1);
+  first_bin = lp.add_variables((N - k0) * q * per, 0, 1);
   for (int j = first_bin; j < lp.num_variables(); ++j) lp.set_integer(j);
-  auto bin = [&](int k, int i, int which) { return first_bin + ((k - k0) * q + i) * per + which; };
   for (int k = k0; k < N; ++k)  // the quantized approximation: no jump off the grid
     if (k % o.grid != 0)
       for (int i = 0; i < q; ++i)
         for (int w = 0; w < per; ++w) lp.set_variable_bounds(bin(k, i, w), 0, 0);
+  add_jump_rows(o);
+  blk = data.ball().add_to(lp, offset, data.regression.xi, 0, o.epsilon * (1 + o.epsilon_slack));
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(lp.num_variables());
+  c[tF] = 1;
+  c.segment(first_bin, (N - k0) * q * per).setOnes();
+  lp.set_objective(c, Sense::minimize);
+}
+
+// The big-M rows linking each difference to its binaries.
+void SparseMilp::add_jump_rows(const SparseBoundOptions& o) {
   for (int k = k0; k < N; ++k)
     for (int i = 0; i < q; ++i) {
       const double mu = o.mu[i], M = (k == 0 ? 1.0 : 2.0) * o.max_abs[i] + mu;
@@ -237,29 +251,46 @@ TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o)
         lp.add_row(std::vector<std::pair<int, double>>{{bin(k, i, 0), 1.0}, {bin(k, i, 1), 1.0}}, -inf, 1.0);
       }
     }
-  const auto blk = ball.add_to(lp, offset, data.regression.xi, 0, eps);
-  Eigen::VectorXd c = Eigen::VectorXd::Zero(lp.num_variables());
-  c[tF] = 1;
-  c.segment(first_bin, (N - k0) * q * per).setOnes();
-  lp.set_objective(c, Sense::minimize);
+}
 
-  std::optional<Eigen::VectorXd> start;
-  if (has_start) {
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(lp.num_variables());
-    const Eigen::VectorXd pi = stack_samples(o.start);
-    x.head(pi.size()) = pi;
-    x[tF] = (o.start * F.asDiagonal()).cwiseAbs().maxCoeff();
-    for (int k = k0; k < N; ++k)
-      for (int i = 0; i < q; ++i) {
-        const double d = o.start(k, i) - (k > 0 ? o.start(k - 1, i) : 0.0);
-        if (std::abs(d) <= o.mu[i] || k % o.grid != 0) continue;
-        if (per == 1) x[bin(k, i, 0)] = 1;
-        else x[bin(k, i, d > 0 ? 0 : 1)] = 1;
-      }
-    x.segment(blk.first_t, offset.size()) = (offset - data.regression.xi * pi).cwiseAbs();
-    start = x;
+// The user's start trajectory as a point of the MILP: its peak, its jumps on the grid, its
+// window-norm slacks.
+Eigen::VectorXd SparseMilp::start_point(const TvBoundData& data, const SparseBoundOptions& o,
+                                        const Eigen::VectorXd& F) const {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(lp.num_variables());
+  const Eigen::VectorXd pi = stack_samples(o.start);
+  x.head(pi.size()) = pi;
+  x[tF] = (o.start * F.asDiagonal()).cwiseAbs().maxCoeff();
+  for (int k = k0; k < N; ++k)
+    for (int i = 0; i < q; ++i) {
+      const double d = o.start(k, i) - (k > 0 ? o.start(k - 1, i) : 0.0);
+      if (std::abs(d) <= o.mu[i] || k % o.grid != 0) continue;
+      if (per == 1) x[bin(k, i, 0)] = 1;
+      else x[bin(k, i, d > 0 ? 0 : 1)] = 1;
+    }
+  x.segment(blk.first_t, offset.size()) = (offset - data.regression.xi * pi).cwiseAbs();
+  return x;
+}
+
+}  // namespace
+
+TvBoundResult sparse_bound(const TvBoundData& data, const SparseBoundOptions& o) {
+  data.validate();
+  const auto t0 = Clock::now();
+  const int N = data.samples(), q = data.parameters();
+  const Eigen::VectorXd F = diagonal_or_ones(o.F, q, "sparse_bound: F");
+  check_sparse_options(o, N, q, data.outputs());
+  if (o.solver == SparseSolver::jump_search) {
+    TvBoundResult r = detail::jump_search(data, o);
+    r.epsilon = o.epsilon;
+    fill_result(data, stack_samples(r.pi), o.mu, r);
+    r.seconds = seconds_since(t0);
+    return r;
   }
-  const MilpSolution s = lp.solve_milp(o.milp, start);
+  SparseMilp milp(data, o, F);
+  std::optional<Eigen::VectorXd> start;
+  if (o.start.size() > 0) start = milp.start_point(data, o, F);
+  const MilpSolution s = milp.lp.solve_milp(o.milp, start);
   if (s.status == MilpStatus::infeasible)
     throw NumericalError("sparse_bound: the MILP is infeasible: eps is below what any perturbation inside max_abs "
                          "can reach (use eps from linf_bound and a larger max_abs)");

@@ -21,14 +21,9 @@ using namespace sets::testing;
 // bound also has to be an improvement on the prior-slope b (the reason it exists).
 TEST(HinfDataBound, StochasticCoverageOfTheTrueSystem) {
   const FirstOrderSum G0{{0.4, 0.2}, {0.6, -0.5}};
-  HinfPriors p;
-  p.M = 1;
-  p.rho = 0.7;
-  p.u_bar = 1;
+  const HinfPriors p{.M = 1, .rho = 0.7, .u_bar = 1};
   const Eigen::VectorXd grid = uniform_grid(30);
-  std::mt19937_64 rng(17);
-  std::uniform_real_distribution<double> U(-1, 1);
-  std::normal_distribution<double> Nn(0, 0.1);
+  ColouredNoiseRuns data(G0, 17);
   HinfBoundOptions o;
   o.uncertainty.alpha = 0.9;
   o.weight.degree = 6;
@@ -36,12 +31,7 @@ TEST(HinfDataBound, StochasticCoverageOfTheTrueSystem) {
   int miss = 0, miss_unweighted = 0, better = 0, miss_b = 0;
   const int runs = 40;
   for (int r = 0; r < runs; ++r) {
-    Eigen::VectorXd u(600), e(600), v(600);
-    for (auto& x : u) x = U(rng);
-    for (auto& x : e) x = Nn(rng);
-    v[0] = e[0];
-    for (int t = 1; t < 600; ++t) v[t] = 0.8 * v[t - 1] + e[t];
-    const Eigen::VectorXd y = G0.simulate(u) + v;
+    const auto [u, y] = data.next();
     const HinfBoundResult R = hinf_bound(HinfData{u.tail(500), y.tail(500), {}},
                                          HinfStructure{OrthonormalBasis::fir(), 10, p, grid}, o);
     const auto G = [&](double w) { return G0(w); };
@@ -75,17 +65,10 @@ RC_GTEST_PROP(HinfDataBound, BoundHoldsForEverySystemConsistentWithTheData, ()) 
   const Eigen::VectorXd y = Phi * theta0;
   const double vbar = *rc::gen::inRange(5, 50) / 100.0;
   d *= vbar / (Phi * d).cwiseAbs().maxCoeff() * (1 - 1e-9);
-  HinfPriors p;
-  p.M = 1;
-  p.rho = 0.9;
-  p.u_bar = 0;
-  HinfBoundOptions o;
-  o.uncertainty.noise = NoiseModel::bounded;
-  o.uncertainty.v_bar = vbar;
+  const HinfPriors p{.M = 1, .rho = 0.9, .u_bar = 0};
+  HinfBoundOptions o = bounded_noise_options(vbar, 4);
   o.uncertainty.first_sample = 0;
   o.nominal.order = 1;
-  o.nominal.iterations = 4;
-  o.weight.degree = 4;
   const Eigen::VectorXd grid = uniform_grid(5);
   const HinfBoundResult R = hinf_bound(HinfData{u, y, {}}, HinfStructure{OrthonormalBasis::fir(), n, p, grid}, o);
   RC_ASSERT(!R.set.empty());
@@ -123,15 +106,8 @@ TEST(HinfBetweenGrid, PeakBetweenGridPointsIsInsideEveryBoundThatClaimsAllFreque
   for (int t = 0; t < pre + N; ++t)
     for (int k = 0; k < n && k < t; ++k) y[t] += g[k] * u[t - k - 1];
   for (auto& x : y) x += vbar * U(rng);
-  HinfPriors priors;
-  priors.M = 1;
-  priors.rho = 0.9;
-  priors.u_bar = 1;
-  HinfBoundOptions opt;
-  opt.uncertainty.noise = NoiseModel::bounded;
-  opt.uncertainty.v_bar = vbar;
-  opt.weight.degree = 2;
-  opt.nominal.iterations = 4;
+  const HinfPriors priors{.M = 1, .rho = 0.9, .u_bar = 1};
+  const HinfBoundOptions opt = bounded_noise_options(vbar, 2);
   const HinfBoundResult R = hinf_bound(HinfData{u.tail(N), y.tail(N), {}},
                                        HinfStructure{OrthonormalBasis::fir(), n, priors, uniform_grid(3)}, opt);
   ASSERT_FALSE(R.set.empty());

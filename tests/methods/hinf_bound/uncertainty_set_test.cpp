@@ -105,23 +105,13 @@ TEST(HinfDataBound, TailSlopeBoundHolds) {
 // 10% of the runs may have a region that misses G0; 40 runs allow 4 + 3 sd = 10 (the app runs 200+).
 TEST(HinfStochastic, RegionsCoverTheTrueSystemAtTheStatedLevel) {
   const FirstOrderSum G0{{0.4, 0.2}, {0.6, -0.5}};
-  HinfPriors p;
-  p.M = 1;
-  p.rho = 0.7;
-  p.u_bar = 1;
+  const HinfPriors p{.M = 1, .rho = 0.7, .u_bar = 1};
   const Eigen::VectorXd grid = uniform_grid(30);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> U(-1, 1);
-  std::normal_distribution<double> Nn(0, 0.1);
+  ColouredNoiseRuns data(G0, 11);
   int miss = 0, ellipse_miss = 0;
   const int runs = 40;
   for (int r = 0; r < runs; ++r) {
-    Eigen::VectorXd u(600), e(600), v(600);
-    for (auto& x : u) x = U(rng);
-    for (auto& x : e) x = Nn(rng);
-    v[0] = e[0];
-    for (int t = 1; t < 600; ++t) v[t] = 0.8 * v[t - 1] + e[t];  // coloured noise
-    const Eigen::VectorXd y = G0.simulate(u) + v;
+    const auto [u, y] = data.next();
     UncertaintyOptions o;
     o.alpha = 0.9;
     const UncertaintySet S = uncertainty_set(u.tail(500), y.tail(500), OrthonormalBasis::fir(), 10, grid, p, o);
