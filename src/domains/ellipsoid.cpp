@@ -402,82 +402,72 @@ Ellipsoid minkowski_sum(const Ellipsoid& E1, const Ellipsoid& E2, EllipsoidCrite
   return detail::outer_ellipsoid(c, S);
 }
 
-std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y,
-                                             double delta, const StripOptions& options) {
-  check_dim(E, a.size(), "intersect_strip");
-  if (!a.allFinite() || !std::isfinite(y) || !std::isfinite(delta) || delta < 0)
-    throw InputError("intersect_strip: regressor, output and error bound must be finite, bound >= 0");
-  const int n = E.dimension();
-  const IntervalVector ai = detail::iv(a);
-  const IntervalMatrix Pi = detail::im(E.shape());
-  const IntervalVector Pa = multiply(Pi, ai);
-  const Interval g = detail::dot(ai, Pa);
-  const Interval ac = detail::dot(ai, detail::iv(E.center()));
-  const Interval half_width = sqrt(Interval(std::max(g.upper(), 0.0)));
-  // E's extent along a is inside [lo_E, hi_E]; the strip is [y - delta, y + delta].
-  const double lo_E = (ac - half_width).lower(), hi_E = (ac + half_width).upper();
-  const double lo_S = (Interval(y) - Interval(delta)).lower(), hi_S = (Interval(y) + Interval(delta)).upper();
-  if (lo_S > hi_E || hi_S < lo_E) return std::nullopt;  // provably disjoint
-  // Clip the strip to E's extent: the intersection is unchanged and the update is tighter.
-  const double lo = std::max(lo_S, lo_E), hi = std::min(hi_S, hi_E);
-  if (lo <= lo_E && hi >= hi_E) return E;  // the strip does not cut E
-  const double ym = 0.5 * (lo + hi);
-  const double dl = std::max((Interval(ym) - Interval(lo)).upper(), (Interval(hi) - Interval(ym)).upper());
-  const double gm = g.upper();
-  if (gm <= 0) return E;  // E is flat along a: nothing to cut
-  const Interval e = Interval(ym) - ac;  // innovation
-  const double em = midpoint(e);
+namespace {
 
-  // Schweppe's family with weight q: (x-c)^T P^{-1} (x-c) + q (ym - a^T x)^2 / dl^2 <= 1 + q.
-  // With s = dl^2 + q g: centre c + q e P a / s, shape beta (P - q P a a^T P / s),
-  // beta = 1 + q - q e^2 / s.
-  auto family = [&](const Interval& q) {
-    const Interval s = Interval(dl) * Interval(dl) + q * g;
-    const Interval beta = Interval(1.0) + q - q * e * e / s;
-    IntervalVector c = detail::iv(E.center());
-    const Interval k = q * e / s;
-    for (int i = 0; i < n; ++i) c[i] += k * Pa[i];
-    IntervalMatrix P(n, n);
-    const Interval h = q / s;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) P(i, j) = beta * (Pi(i, j) - h * Pa[i] * Pa[j]);
-    return std::pair{c, P};
-  };
+// E and the strip a^T x in [lo, hi] (already clipped to E's extent along a), in intervals.
+struct StripCut {
+  IntervalVector ai, Pa;  // a, and P a
+  IntervalMatrix Pi;      // P
+  Interval g, e;          // a^T P a; the innovation ym - a^T c
+  double lo = 0, hi = 0, ym = 0, dl = 0;  // the strip's ends, middle and half-width (rounded up)
+};
 
-  if (dl == 0) {
-    // Hyperplane a^T x = ym: the intersection is exactly the ellipsoid with centre
-    // c + e P a / g and shape (1 - e^2/g) (P - P a a^T P / g) (conditioning formulas).
-    const Interval beta = Interval(1.0) - e * e / g;
-    IntervalVector c = detail::iv(E.center());
-    for (int i = 0; i < n; ++i) c[i] += e / g * Pa[i];
-    IntervalMatrix P(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        P(i, j) = Interval(std::max(beta.upper(), 0.0)) * (Pi(i, j) - Pa[i] * Pa[j] / g);
-    return detail::outer_ellipsoid(c, P);
-  }
+// The intersection with the hyperplane a^T x = ym (dl = 0), exactly the ellipsoid with centre
+// c + e P a / g and shape (1 - e^2/g) (P - P a a^T P / g) (conditioning formulas).
+Ellipsoid cut_by_hyperplane(const Ellipsoid& E, const StripCut& s) {
+  const auto n = E.dimension();
+  const Interval beta = Interval(1.0) - s.e * s.e / s.g;
+  IntervalVector c = detail::iv(E.center());
+  for (int i = 0; i < n; ++i) c[i] += s.e / s.g * s.Pa[i];
+  IntervalMatrix P(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      P(i, j) = Interval(std::max(beta.upper(), 0.0)) * (s.Pi(i, j) - s.Pa[i] * s.Pa[j] / s.g);
+  return detail::outer_ellipsoid(c, P);
+}
 
-  const double d2 = dl * dl;
-  if (n == 1) {
-    // 1-D: the intersection is an interval, which is itself the optimal ellipsoid.
-    IntervalVector c(1);
-    c[0] = (Interval(lo) + Interval(hi)) / Interval(2.0) / ai[0];
-    const Interval r = (Interval(hi) - Interval(lo)) / Interval(2.0) / abs(ai[0]);
-    IntervalMatrix P(1, 1);
-    P(0, 0) = r * r;
-    return detail::outer_ellipsoid(c, P);
-  }
-  // Fogel & Huang's minimum-volume weight: s = d^2 + q g solves
-  // (n-1) s^2 - (g - d^2 - e^2) s - (n+1) e^2 d^2 = 0.
+// 1-D: the intersection is an interval, which is itself the optimal ellipsoid.
+Ellipsoid cut_in_one_dimension(const StripCut& s) {
+  IntervalVector c(1);
+  c[0] = (Interval(s.lo) + Interval(s.hi)) / Interval(2.0) / s.ai[0];
+  const Interval r = (Interval(s.hi) - Interval(s.lo)) / Interval(2.0) / abs(s.ai[0]);
+  IntervalMatrix P(1, 1);
+  P(0, 0) = r * r;
+  return detail::outer_ellipsoid(c, P);
+}
+
+// Schweppe's family with weight q: (x-c)^T P^{-1} (x-c) + q (ym - a^T x)^2 / dl^2 <= 1 + q.
+// With s = dl^2 + q g: centre c + q e P a / s, shape beta (P - q P a a^T P / s),
+// beta = 1 + q - q e^2 / s.
+Ellipsoid schweppe_member(const Ellipsoid& E, const StripCut& s, const Interval& q) {
+  const auto n = E.dimension();
+  const Interval sq = Interval(s.dl) * Interval(s.dl) + q * s.g;
+  const Interval beta = Interval(1.0) + q - q * s.e * s.e / sq;
+  IntervalVector c = detail::iv(E.center());
+  const Interval k = q * s.e / sq;
+  for (int i = 0; i < n; ++i) c[i] += k * s.Pa[i];
+  IntervalMatrix P(n, n);
+  const Interval h = q / sq;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) P(i, j) = beta * (s.Pi(i, j) - h * s.Pa[i] * s.Pa[j]);
+  return detail::outer_ellipsoid(c, P);
+}
+
+// Fogel & Huang's minimum-volume weight: s = d^2 + q g solves
+// (n-1) s^2 - (g - d^2 - e^2) s - (n+1) e^2 d^2 = 0.
+double minimum_volume_weight(int n, double gm, double d2, double em) {
   const double B = gm - d2 - em * em;
   const double s_vol = (B + std::sqrt(B * B + 4.0 * (n - 1.0) * (n + 1.0) * em * em * d2)) / (2.0 * (n - 1.0));
-  const double q_vol = (s_vol - d2) / gm;
-  // Minimum-trace weight: 1-D search (grid in log q, then golden section).
+  return (s_vol - d2) / gm;
+}
+
+// Minimum-trace weight: 1-D search (grid in log q, then golden section); 0 when no q > 0 beats E.
+double minimum_trace_weight(const Ellipsoid& E, const StripCut& s, double gm, double d2, double em) {
   const double trP = E.shape().trace();
-  const double pa2 = midpoint(detail::dot(Pa, Pa));
+  const double pa2 = midpoint(detail::dot(s.Pa, s.Pa));
   auto tr = [&](double qq) {
-    const double s = d2 + qq * gm;
-    return (1 + qq - qq * em * em / s) * (trP - qq * pa2 / s);
+    const double sq = d2 + qq * gm;
+    return (1 + qq - qq * em * em / sq) * (trP - qq * pa2 / sq);
   };
   double q_tr = 0, fbest = trP, best_lq = 0;
   for (double lq = -10; lq <= 10; lq += 0.25) {
@@ -486,14 +476,44 @@ std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Re
   }
   if (q_tr > 0)
     q_tr = std::pow(10.0, golden_min([&](double lq) { return tr(std::pow(10.0, lq)); }, best_lq - 0.25, best_lq + 0.25));
+  return q_tr;
+}
+
+}  // namespace
+
+std::optional<Ellipsoid> try_intersect_strip(const Ellipsoid& E, const Eigen::Ref<const Eigen::VectorXd>& a, double y,
+                                             double delta, const StripOptions& options) {
+  check_dim(E, a.size(), "intersect_strip");
+  if (!a.allFinite() || !std::isfinite(y) || !std::isfinite(delta) || delta < 0)
+    throw InputError("intersect_strip: regressor, output and error bound must be finite, bound >= 0");
+  const int n = E.dimension();
+  StripCut s;
+  s.ai = detail::iv(a);
+  s.Pi = detail::im(E.shape());
+  s.Pa = multiply(s.Pi, s.ai);
+  s.g = detail::dot(s.ai, s.Pa);
+  const Interval ac = detail::dot(s.ai, detail::iv(E.center()));
+  const Interval half_width = sqrt(Interval(std::max(s.g.upper(), 0.0)));
+  // E's extent along a is inside [lo_E, hi_E]; the strip is [y - delta, y + delta].
+  const double lo_E = (ac - half_width).lower(), hi_E = (ac + half_width).upper();
+  const double lo_S = (Interval(y) - Interval(delta)).lower(), hi_S = (Interval(y) + Interval(delta)).upper();
+  if (lo_S > hi_E || hi_S < lo_E) return std::nullopt;  // provably disjoint
+  // Clip the strip to E's extent: the intersection is unchanged and the update is tighter.
+  s.lo = std::max(lo_S, lo_E), s.hi = std::min(hi_S, hi_E);
+  if (s.lo <= lo_E && s.hi >= hi_E) return E;  // the strip does not cut E
+  s.ym = 0.5 * (s.lo + s.hi);
+  s.dl = std::max((Interval(s.ym) - Interval(s.lo)).upper(), (Interval(s.hi) - Interval(s.ym)).upper());
+  const double gm = s.g.upper();
+  if (gm <= 0) return E;  // E is flat along a: nothing to cut
+  s.e = Interval(s.ym) - ac;  // innovation
+  if (s.dl == 0) return cut_by_hyperplane(E, s);
+  if (n == 1) return cut_in_one_dimension(s);
+  const double d2 = s.dl * s.dl, em = midpoint(s.e);
   // Rounding enlarges each candidate differently (large q means cancellation), so compare the
   // stored results, E itself included, by the requested measure.
   std::vector<Ellipsoid> cand{E};
-  for (double q : {q_vol, q_tr})
-    if (q > 0 && std::isfinite(q)) {
-      auto [c, P] = family(Interval(q));
-      cand.push_back(detail::outer_ellipsoid(c, P));
-    }
+  for (double q : {minimum_volume_weight(n, gm, d2, em), minimum_trace_weight(E, s, gm, d2, em)})
+    if (q > 0 && std::isfinite(q)) cand.push_back(schweppe_member(E, s, Interval(q)));
   auto measure = [&](const Ellipsoid& F) {
     if (options.criterion == EllipsoidCriterion::min_trace) return std::pair{F.shape().trace(), 0.0};
     return std::pair{volume(F), F.shape().trace()};  // flat: volumes tie at 0, trace decides
