@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "common/json_output.hpp"
-#include "common/monte_carlo.hpp"
 #include "sets/core/exit_code.hpp"
 #include "sets/examples/cerone_regruto.hpp"
+#include "sets/numeric/worker_threads.hpp"
 
 namespace {
 
@@ -218,7 +218,8 @@ int run_tables(const TableRuns& tr) {
   const std::size_t jobs = settings.size() * static_cast<std::size_t>(runs);
   std::vector<RunResult> results(jobs);
   const auto wall0 = std::chrono::steady_clock::now();
-  const auto failure = sets::app::run_parallel(jobs, tr.threads, [&](std::size_t k) {
+  // Each run depends only on its index (its own generator), so the tables do not depend on --threads.
+  const auto failure = sets::try_jobs(static_cast<int>(tr.threads), jobs, [&](std::size_t k) {
     results[k] = simulate_and_bound(settings[k / runs], static_cast<int>(k % runs), tr);
   });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -226,8 +227,8 @@ int run_tables(const TableRuns& tr) {
     try {
       std::rethrow_exception(failure->error);
     } catch (const std::exception& e) {
-      std::cerr << "sets-lpv-pui: run " << failure->run % runs << " of table "
-                << kTables[settings[failure->run / runs].table].name << " failed: " << e.what() << '\n';
+      std::cerr << "sets-lpv-pui: run " << failure->index % runs << " of table "
+                << kTables[settings[failure->index / runs].table].name << " failed: " << e.what() << '\n';
       return sets::exit_code_for(e);
     }
   }

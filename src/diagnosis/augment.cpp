@@ -4,7 +4,6 @@
 #include <Eigen/QR>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -70,24 +69,13 @@ std::vector<Eigen::VectorXd> global_step_starts(const Context& c, const ModelFil
   if (calibrated == 0) return {};
   const std::vector<Eigen::VectorXd> starts = effect_starts(current, chosen);
   std::vector<CalibrationResult> costs(starts.size());
-  std::vector<std::exception_ptr> errors(starts.size());
-  std::atomic<std::size_t> next{0};
-  run_worker_threads(c.options.threads, [&] {
-    std::unique_ptr<Simulator> fast;
-    for (std::size_t i; (i = next++) < starts.size();) {
-      try {
-        if (!fast) fast = std::make_unique<Simulator>(current, c.estimation, SimulationOptions{c.options.screening_substeps});
-        costs[i] = evaluate(*fast, starts[i]);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  });
+  run_jobs_with(
+      c.options.threads, starts.size(),
+      [&] { return std::make_unique<Simulator>(current, c.estimation, SimulationOptions{c.options.screening_substeps}); },
+      [&](const std::unique_ptr<Simulator>& fast, std::size_t i) { costs[i] = evaluate(*fast, starts[i]); });
   std::vector<std::pair<double, Eigen::VectorXd>> costed;
-  for (std::size_t i = 0; i < starts.size(); ++i) {
-    if (errors[i]) std::rethrow_exception(errors[i]);
+  for (std::size_t i = 0; i < starts.size(); ++i)
     if (costs[i].ok && std::isfinite(costs[i].cost)) costed.emplace_back(costs[i].cost, starts[i]);
-  }
   std::stable_sort(costed.begin(), costed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   costed.resize(std::min(costed.size(), calibrated));
   std::vector<Eigen::VectorXd> out;
@@ -107,26 +95,21 @@ std::vector<CalibrationResult> optima_of(const Context& c, const ModelFile& curr
   CalibrationOptions full = o;
   full.max_evaluations = 80 * static_cast<int>(free.size() + 1);
   std::vector<CalibrationResult> out(starts.size() + 1);
-  std::exception_ptr search_error;
-  std::atomic<std::size_t> next{0};
-  run_worker_threads(c.options.threads, [&] {
-    for (std::size_t i; (i = next++) < out.size();) {
-      try {
-        const Simulator exact(current, c.estimation, {c.options.final_substeps});
-        if (i == 0) {
-          out[0] = refine_with_final_substeps(c, exact, exact.parameter_values(), free, o);
-          continue;
-        }
-        const Simulator fast(current, c.estimation, {c.options.screening_substeps});
-        const CalibrationResult coarse = calibrate(fast, starts[i - 1], free, full);
-        if (coarse.ok) out[i] = refine_with_final_substeps(c, exact, coarse.parameters, free, o);
-      } catch (...) {
-        if (i == 0) search_error = std::current_exception();
-        else out[i] = CalibrationResult();  // a start that cannot be calibrated adds nothing
-      }
+  run_jobs(c.options.threads, out.size(), [&](std::size_t i) {
+    if (i == 0) {  // the search's optimum: an error here is the caller's
+      const Simulator exact(current, c.estimation, {c.options.final_substeps});
+      out[0] = refine_with_final_substeps(c, exact, exact.parameter_values(), free, o);
+      return;
+    }
+    try {
+      const Simulator exact(current, c.estimation, {c.options.final_substeps});
+      const Simulator fast(current, c.estimation, {c.options.screening_substeps});
+      const CalibrationResult coarse = calibrate(fast, starts[i - 1], free, full);
+      if (coarse.ok) out[i] = refine_with_final_substeps(c, exact, coarse.parameters, free, o);
+    } catch (...) {
+      out[i] = CalibrationResult();  // a start that cannot be calibrated adds nothing
     }
   });
-  if (search_error) std::rethrow_exception(search_error);
   return out;
 }
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -48,14 +47,6 @@ double validation_cost(const Context& c, const ModelFile& m) {
   } catch (const std::exception&) {
     return 1e300;
   }
-}
-
-template <class Job>
-void parallel(int threads, std::size_t jobs, Job job) {
-  std::atomic<std::size_t> next{0};
-  run_worker_threads(threads, [&] {
-    for (std::size_t i; (i = next++) < jobs;) job(i);
-  });
 }
 
 // One hypothesis to refine: its candidate and the starts of its output-error calibration.
@@ -169,7 +160,7 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
     bool threw = false;
   };
   std::vector<Outcome> out(jobs.size());
-  parallel(c.options.threads, jobs.size(), [&](std::size_t j) {
+  run_jobs(c.options.threads, jobs.size(), [&](std::size_t j) {
     const auto [i, k] = jobs[j];
     try {
       const Simulator s(hypotheses[i].cand->model, c.estimation, {c.options.screening_substeps});
@@ -188,7 +179,7 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
     if (r.ok && (!best[i].ok || r.cost < best[i].cost)) best[i] = r;
   }
   std::vector<Trial> trials(n);
-  parallel(c.options.threads, n, [&](std::size_t i) {
+  run_jobs(c.options.threads, n, [&](std::size_t i) {
     if (lost[i]) best[i].ok = false;
     trials[i] = finish(c, *hypotheses[i].cand, best[i]);
   });

@@ -1,8 +1,6 @@
 // Helpers shared by the stages of the diagnosis.
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <memory>
 #include <cmath>
 
@@ -82,21 +80,9 @@ Eigen::MatrixXd output_jacobian(const Simulator& sim, const Eigen::VectorXd& p, 
 Eigen::MatrixXd output_jacobian(const ModelFile& model, const Recording& data, int substeps, int threads, const Eigen::VectorXd& p,
                                 const std::vector<int>& free, const std::vector<double>& scale, const Eigen::MatrixXd& y0) {
   Eigen::MatrixXd J(y0.size(), static_cast<Eigen::Index>(free.size()));
-  std::vector<std::exception_ptr> errors(free.size());
-  std::atomic<std::size_t> next{0};
-  run_worker_threads(threads, [&] {
-    std::unique_ptr<Simulator> sim;  // one per worker: a Simulator is never shared between threads
-    for (std::size_t i; (i = next++) < free.size();) {
-      try {
-        if (!sim) sim = std::make_unique<Simulator>(model, data, SimulationOptions{substeps});
-        jacobian_column(*sim, p, free, scale, y0, i, J);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  });
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  run_jobs_with(
+      threads, free.size(), [&] { return std::make_unique<Simulator>(model, data, SimulationOptions{substeps}); },
+      [&](const std::unique_ptr<Simulator>& sim, std::size_t i) { jacobian_column(*sim, p, free, scale, y0, i, J); });
   return J;
 }
 

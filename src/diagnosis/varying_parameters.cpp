@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <optional>
 
 #include "diagnosis/stages.hpp"
@@ -180,21 +179,9 @@ std::vector<VaryingParameter> varying_parameters(const ModelFile& model, const R
     return vp;
   };
   std::vector<std::optional<VaryingParameter>> found(static_cast<std::size_t>(q));
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(q));
-  std::atomic<int> next_parameter{0};
-  run_worker_threads(threads, [&] {
-    for (int i; (i = next_parameter++) < q;) {
-      try {
-        found[static_cast<std::size_t>(i)] = estimate(i);
-      } catch (...) {
-        errors[static_cast<std::size_t>(i)] = std::current_exception();
-      }
-    }
-  });
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    if (errors[i]) std::rethrow_exception(errors[i]);
-    if (found[i]) out.push_back(std::move(*found[i]));
-  }
+  run_jobs(threads, found.size(), [&](std::size_t i) { found[i] = estimate(static_cast<int>(i)); });
+  for (auto& f : found)
+    if (f) out.push_back(std::move(*f));
   std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.explained > y.explained; });
   return out;
 }
