@@ -26,18 +26,40 @@ Verdict verdict(BoolInterval b) {
   return b == BoolInterval::yes ? inside : b == BoolInterval::no ? outside : undecided;
 }
 
+// A PUI computed in a run: does its box hold the truth, and its half-widths (zero when empty).
+struct PuiOutcome {
+  bool done = false;
+  Verdict verdict = inside;
+  Eigen::VectorXd halfwidth;
+};
+
+PuiOutcome outcome_of(const PuiResult& p, const Eigen::VectorXd& truth) {
+  const bool empty = p.empty();
+  return {true, empty ? outside : (contains(p.box, truth) ? inside : outside),
+          empty ? Eigen::VectorXd::Zero(truth.size()) : radius(p.box)};
+}
+
+// Adds a run's PUI to its failure count and half-width sum (runs where it was computed only).
+void tally(const PuiOutcome& o, FailureCount& count, Eigen::VectorXd& halfwidth_sum) {
+  if (!o.done) return;
+  ++count.runs;
+  count.outside += o.verdict == outside;
+  halfwidth_sum += o.halfwidth;
+}
+
 struct RunResult {
   Eigen::VectorXd theta;
   double ell = 0;
-  Verdict full = inside, fps_full = inside, fps_pui = inside;
-  bool pui_done = false;
-  Eigen::VectorXd pui_halfwidth, box_halfwidth;
+  Verdict full = inside, fps_full = inside;
+  PuiOutcome fps_pui;
+  Eigen::VectorXd box_halfwidth;
   std::vector<Verdict> projection, slice;  // per pair
   // The guaranteed set: membership of the truth, its PUI box, whether the run met the assumption
   // (Gaussian noise can exceed the bound) and whether the data contradicted the assumptions.
-  Verdict g_full = inside, g_pui = inside;
-  bool g_pui_done = false, assumption_held = true, contradicted = false;
-  Eigen::VectorXd g_halfwidth, g_state_radius;
+  Verdict g_full = inside;
+  PuiOutcome g_pui;
+  bool assumption_held = true, contradicted = false;
+  Eigen::VectorXd g_state_radius;
 };
 
 // What every run shares.
@@ -119,12 +141,7 @@ RunResult one_run(const StudyOptions& st, const Setup& s, int run) {
   }
   r.fps_full = verdict(result.estimate_fps.contains(truth));
   r.box_halfwidth = radius(outer_box(dom.ellipsoid));
-  if (result.estimate_fps_pui) {  // one LP, created and destroyed on this thread
-    const auto& p = *result.estimate_fps_pui;
-    r.pui_done = true;
-    r.fps_pui = p.empty() ? outside : (contains(p.box, truth) ? inside : outside);
-    r.pui_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : radius(p.box);
-  }
+  if (result.estimate_fps_pui) r.fps_pui = outcome_of(*result.estimate_fps_pui, truth);  // LPs of this thread
   r.assumption_held = (data.largest_noise.array() <= vbar.array()).all();
   if (result.guaranteed_fps) {
     r.contradicted = !result.state_enclosure->contradictions.empty();
@@ -134,12 +151,7 @@ RunResult one_run(const StudyOptions& st, const Setup& s, int run) {
     for (Eigen::Index k = 0; k < radii.rows(); ++k)
       for (Eigen::Index c = 0; c < radii.cols(); ++c) r.g_state_radius[k] += radii(k, c) / radii.cols();
   }
-  if (result.guaranteed_pui) {
-    const auto& p = *result.guaranteed_pui;
-    r.g_pui_done = true;
-    r.g_pui = p.empty() ? outside : (contains(p.box, truth) ? inside : outside);
-    r.g_halfwidth = p.empty() ? Eigen::VectorXd::Zero(truth.size()) : radius(p.box);
-  }
+  if (result.guaranteed_pui) r.g_pui = outcome_of(*result.guaranteed_pui, truth);
   return r;
 }
 
@@ -211,11 +223,7 @@ void summarise_estimates(const std::vector<RunResult>& results, const Setup& s, 
   out.estimate_pui_halfwidth = Eigen::VectorXd::Zero(m);
   for (const auto& r : results) {
     out.ellipsoid_box_halfwidth += r.box_halfwidth / runs;
-    if (r.pui_done) {
-      ++out.estimate_fps_pui.runs;
-      out.estimate_fps_pui.outside += r.fps_pui == outside;
-      out.estimate_pui_halfwidth += r.pui_halfwidth;
-    }
+    tally(r.fps_pui, out.estimate_fps_pui, out.estimate_pui_halfwidth);
   }
   if (out.estimate_fps_pui.runs) out.estimate_pui_halfwidth /= out.estimate_fps_pui.runs;
   out.mean_ell = 0;
@@ -234,11 +242,7 @@ void summarise_guaranteed(const std::vector<RunResult>& results, const Setup& s,
     out.guaranteed.undecided += r.g_full == undecided;
     out.guaranteed_outside_meeting_assumption += r.g_full == outside && r.assumption_held;
     out.mean_state_radius += r.g_state_radius / runs;
-    if (r.g_pui_done) {
-      ++out.guaranteed_pui.runs;
-      out.guaranteed_pui.outside += r.g_pui == outside;
-      out.guaranteed_pui_halfwidth += r.g_halfwidth;
-    }
+    tally(r.g_pui, out.guaranteed_pui, out.guaranteed_pui_halfwidth);
   }
   if (out.guaranteed_pui.runs) out.guaranteed_pui_halfwidth /= out.guaranteed_pui.runs;
 }
