@@ -132,7 +132,7 @@ bool inside_bound(const Eigen::MatrixXd& R, const OutputErrorIntervals& oe) {
 void set_bounded_error_interval(EffectParameter& ep, double min, double max) {
   ep.lo = min;
   ep.hi = max;
-  if (!ep.has_ee || !ep.ee_certified) return;
+  if (!ep.has_bounded_error_interval()) return;
   ep.lo = std::max(ep.lo, ep.ee_lo);
   ep.hi = std::min(ep.hi, ep.ee_hi);
 }

@@ -63,7 +63,7 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
     for (const auto& p : e.parameters) {
       J oe_delta = J::object();
       for (std::size_t k = 0; k < p.oe_delta.size() && k < d.outputs.size(); ++k) oe_delta[d.outputs[k]] = num(p.oe_delta[k]);
-      const bool bounded = p.has_ee && p.ee_certified;
+      const bool bounded = p.has_bounded_error_interval();
       ps[p.name] = {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
                     {"interval_kind", bounded ? "bounded-error interval: holds when |equation error| <= error_bound.equation_error "
                                                 "(an assumption); met with the declared min/max"
@@ -174,7 +174,7 @@ std::string diagnosis_text(const Diagnosis& d) {
     o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
     for (const auto& p : e.parameters) {
       o << "     " << p.name << " = " << fmt(p.estimate, 5);
-      if (p.has_ee && p.ee_certified)
+      if (p.has_bounded_error_interval())
         o << ", bounded-error interval [" << fmt(p.lo, 5) << ", " << fmt(p.hi, 5) << "] under |equation error| <= " << fmt(p.ee_delta, 3);
       else
         o << ", no bounded-error interval (" << (p.has_ee ? "equation-error PUI not certified" : "no equation-error PUI") << ")";

@@ -39,7 +39,7 @@ SuiteCoverage coverage_of(const std::string& effect, const std::string& role, do
   c.estimate_oe_lo = ep.estimate_oe_lo, c.estimate_oe_hi = ep.estimate_oe_hi;
   c.has_ee = ep.has_ee, c.ee_certified = ep.ee_certified, c.ee_lo = ep.ee_lo, c.ee_hi = ep.ee_hi;
   c.estimate_stat_lo = ep.estimate_stat_lo, c.estimate_stat_hi = ep.estimate_stat_hi;
-  c.bounded = ep.has_ee && ep.ee_certified;
+  c.bounded = ep.has_bounded_error_interval();
   c.inside = holds(ep.lo, ep.hi, truth);
   c.inside_estimate = holds(ep.estimate_oe_lo, ep.estimate_oe_hi, truth);
   // The rule before: the meet of both PUIs (their hull when disjoint).

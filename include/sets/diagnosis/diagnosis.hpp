@@ -102,6 +102,10 @@ struct EffectParameter {
   double ee_lo = 0, ee_hi = 0;
   double ee_delta = 0;              // ... under |integrated equation error| <= ee_delta
   double estimate_stat_lo = 0, estimate_stat_hi = 0;  // estimate: 95 % statistical interval (white noise)
+
+  /// [lo, hi] rests on a bounded-error set (the certified equation-error PUI), not only on the
+  /// declared [min, max].
+  bool has_bounded_error_interval() const { return has_ee && ee_certified; }
 };
 
 struct DiagnosedEffect {
