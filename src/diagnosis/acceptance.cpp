@@ -28,4 +28,45 @@ bool passes(const std::vector<RuleCheck>& checks) {
   return true;
 }
 
+MisfitWhereTheyDiffer misfit_where_they_differ(const Eigen::Ref<const Eigen::MatrixXd>& measured,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& first,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& second,
+                                               const std::vector<double>& sigma) {
+  MisfitWhereTheyDiffer m;
+  const bool same_shape = first.rows() == measured.rows() && second.rows() == measured.rows() &&
+                          first.cols() == measured.cols() && second.cols() == measured.cols() &&
+                          static_cast<Eigen::Index>(sigma.size()) == measured.cols();
+  if (!same_shape) return m;
+  for (Eigen::Index j = 0; j < measured.cols(); ++j) {
+    const double spread = (measured.col(j).array() - measured.col(j).mean()).matrix().squaredNorm();
+    const double s = sigma[static_cast<std::size_t>(j)];
+    if (!(spread > 0) || !std::isfinite(s)) continue;
+    double a = 0, b = 0;
+    long n = 0;
+    for (Eigen::Index t = 0; t < measured.rows(); ++t) {
+      if (!(std::abs(first(t, j) - second(t, j)) > s)) continue;  // the noise could hide this difference
+      a += (measured(t, j) - first(t, j)) * (measured(t, j) - first(t, j));
+      b += (measured(t, j) - second(t, j)) * (measured(t, j) - second(t, j));
+      ++n;
+    }
+    m.first += a / spread;
+    m.second += b / spread;
+    m.noise += static_cast<double>(n) * s * s / spread;
+    m.samples += n;
+  }
+  return m;
+}
+
+HypothesisEvidence nested_evidence(const MisfitWhereTheyDiffer& estimation, const MisfitWhereTheyDiffer* validation) {
+  HypothesisEvidence e;
+  e.cost_null = estimation.first;
+  e.cost = estimation.second;
+  e.noise_cost = estimation.noise;
+  if (validation && validation->samples > 0) {  // a record where they never differ cannot judge them
+    e.cost_null_validation = validation->first;
+    e.cost_validation = validation->second;
+  }
+  return e;
+}
+
 }  // namespace sets

@@ -3,6 +3,8 @@
 // (docs/methods/diagnosis.md, step 3). Every rule is a number compared with a threshold, so the
 // report can show each one and a test can make each one fail.
 
+#include <Eigen/Core>
+
 #include <limits>
 #include <string>
 #include <vector>
@@ -39,5 +41,28 @@ struct RuleCheck {
 std::vector<RuleCheck> check_rules(const HypothesisEvidence& e, const AcceptanceRules& rules = {});
 /// Every applicable rule passed.
 bool passes(const std::vector<RuleCheck>& checks);
+
+/// Two calibrated models judged where they disagree: the squared misfit of each (the costs'
+/// units, each output divided by ||y_j - mean y_j||^2) and the noise's own misfit, summed only
+/// over the samples (t, j) where the two simulated outputs differ by more than the noise level
+/// sigma_j. Elsewhere the data cannot tell them apart, so a richer law's gain there is noise
+/// fitted (or a difference too small to see); see `nested_evidence`.
+struct MisfitWhereTheyDiffer {
+  double first = 0, second = 0;  // squared misfit of each model on those samples
+  double noise = 0;              // sum of sigma_j^2 over those samples, same units
+  long samples = 0;              // (sample, output) pairs where they differ
+};
+MisfitWhereTheyDiffer misfit_where_they_differ(const Eigen::Ref<const Eigen::MatrixXd>& measured,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& first,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& second,
+                                               const std::vector<double>& sigma);
+
+/// The evidence for a richer law against its special case (both calibrated), restricted to the
+/// samples where the two differ (estimation and, when given, validation): the special case is the
+/// baseline, the richer law the hypothesis, the noise's misfit that on those samples, and no
+/// switch-off rule (the special case is the richer law switched off, every other parameter free).
+/// check_rules then asks the extra parameters to remove min_gain of the special case's misfit
+/// where they act, and more than the noise there.
+HypothesisEvidence nested_evidence(const MisfitWhereTheyDiffer& estimation, const MisfitWhereTheyDiffer* validation);
 
 }  // namespace sets
