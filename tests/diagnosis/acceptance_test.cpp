@@ -105,3 +105,43 @@ TEST(Acceptance, NamedEffectsPassedEveryRuleTheyReport) {
     EXPECT_GE(e.cost_reduction_validation, 0.05);
   }
 }
+
+// Nested laws are judged where the two calibrated models differ by more than the noise: a richer
+// law that fits a short stretch (here 20 of 1000 samples) the special case misses removes a small
+// share of the whole record's misfit (the noise elsewhere dilutes it) but most of the misfit where
+// its extra term acts; samples where the two differ by less than the noise do not count.
+TEST(Acceptance, NestedLawJudgedOnTheSamplesWhereTheTwoModelsDiffer) {
+  const int n = 1000;
+  const double sigma = 0.1;
+  Eigen::MatrixXd y(n, 1), special(n, 1), richer(n, 1);
+  for (int t = 0; t < n; ++t) {
+    const double noise = sigma * std::sin(0.7 * t + 0.3 * t * t);  // deterministic, |noise| <= sigma
+    const double truth = std::sin(0.01 * t) + (t >= 500 && t < 520 ? 0.5 : 0.0);  // the extra term: a short pulse
+    y(t, 0) = truth + noise;
+    special(t, 0) = std::sin(0.01 * t);
+    richer(t, 0) = truth + (t < 100 ? 0.5 * sigma : 0.0);  // plus a difference the noise hides
+  }
+  const MisfitWhereTheyDiffer m = misfit_where_they_differ(y, special, richer, {sigma});
+  EXPECT_EQ(m.samples, 20);
+  const double spread = (y.array() - y.mean()).matrix().squaredNorm();
+  EXPECT_NEAR(m.noise, 20 * sigma * sigma / spread, 1e-12);
+  EXPECT_GT(m.first, 10 * m.second);
+  EXPECT_TRUE(passes(check_rules(nested_evidence(m, nullptr))));
+  // On the whole record the same gain is diluted by the noise everywhere and fails.
+  HypothesisEvidence whole;
+  whole.cost_null = (y - special).squaredNorm() / spread;
+  whole.cost = (y - richer).squaredNorm() / spread;
+  whole.noise_cost = n * sigma * sigma / spread;
+  EXPECT_FALSE(passes(check_rules(whole)));
+  // A richer law that fits only noise where it differs does not pass.
+  Eigen::MatrixXd overfit = special;
+  for (int t = 0; t < 20; ++t) overfit(t, 0) += 2 * sigma;
+  EXPECT_FALSE(passes(check_rules(nested_evidence(misfit_where_they_differ(y, special, overfit, {sigma}), nullptr))));
+  // A validation record on which the two never differ cannot judge them: its rule does not apply;
+  // one on which the richer law is worse fails it.
+  const MisfitWhereTheyDiffer none = misfit_where_they_differ(y, special, special, {sigma});
+  EXPECT_EQ(none.samples, 0);
+  EXPECT_TRUE(passes(check_rules(nested_evidence(m, &none))));
+  const MisfitWhereTheyDiffer worse = misfit_where_they_differ(y, special, overfit, {sigma});
+  EXPECT_FALSE(passes(check_rules(nested_evidence(m, &worse))));
+}

@@ -57,6 +57,22 @@ TEST(Diagnosis, RicherLawNamedOnlyWhenTheDataExcludeItsSpecialCase) {
   }
 }
 
+// Asymmetric friction (different Coulomb levels per direction) on a development plant, effect
+// forced (seed 700 022 of docs/reproduction/diagnosis.md): its extra parameters act only where
+// the calibrated asymmetric law and its special case Coulomb friction + offset differ, so judged
+// on the whole record their gain was diluted below the nested rule's share and the plant was
+// named `coulomb_friction`, `constant_offset`; judged where the two differ, asymmetric friction.
+TEST(Diagnosis, AsymmetricFrictionJudgedWhereItDiffersFromCoulombPlusOffset) {
+  RandomPlantOptions ro;
+  ro.effect = "asymmetric_friction";
+  ro.effects = 1;
+  const SyntheticPlant p = random_plant(700022, ro);
+  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation);
+  ASSERT_FALSE(d.effects.empty()) << d.verdict;
+  EXPECT_EQ(d.effects.front().name, "asymmetric_friction") << d.effects.front().evidence;
+  for (const auto& e : d.effects) EXPECT_NE(e.name, "constant_offset");
+}
+
 TEST(Diagnosis, EmpsNamesCoulombFrictionAndOffset) {
   const auto model = test::shared_data("emps/nominal.json");
   const auto est = test::shared_data("emps/estimation.csv");
