@@ -28,6 +28,18 @@ bool passes(const std::vector<RuleCheck>& checks) {
   return true;
 }
 
+std::vector<RuleCheck> check_nested_rules(const HypothesisEvidence& e, const AcceptanceRules& r) {
+  std::vector<RuleCheck> out = check_rules(e, r);
+  const double left = e.cost - e.noise_cost;  // what the richer law leaves beyond the noise
+  const double gain = e.cost_null - e.cost;
+  RuleCheck k{"explains_where_they_differ",
+              "where the two laws differ, removes at least as much misfit as it leaves beyond the noise (multiple)",
+              left > 0 ? gain / left : (gain > 0 ? 1e300 : 0.0), 1.0, true, false};
+  k.passed = std::isfinite(k.value) && k.value >= k.threshold;
+  out.push_back(k);
+  return out;
+}
+
 MisfitWhereTheyDiffer misfit_where_they_differ(const Eigen::Ref<const Eigen::MatrixXd>& measured,
                                                const Eigen::Ref<const Eigen::MatrixXd>& first,
                                                const Eigen::Ref<const Eigen::MatrixXd>& second,

@@ -544,7 +544,7 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
     for (const Trial* j : special_cases) {
       Fixed fixed;
       if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
-      if (const auto checks = check_rules(against(c, noise, trials[i], *j), rules); !passes(checks)) {
+      if (const auto checks = check_nested_rules(against(c, noise, trials[i], *j), rules); !passes(checks)) {
         trials[i].accepted = false;
         std::string failed;
         for (const auto& k : checks)

@@ -32,6 +32,7 @@ struct AcceptanceRules {
 
 struct RuleCheck {
   std::string name;         // stable: "estimation_gain", "beyond_noise", "own_term", "validation_gain"
+                            // (nested laws: "explains_where_they_differ")
   std::string description;  // the rule in words
   double value = 0, threshold = 0;
   bool applies = true;      // false: not applicable (no validation record, no neutral value)
@@ -64,5 +65,12 @@ MisfitWhereTheyDiffer misfit_where_they_differ(const Eigen::Ref<const Eigen::Mat
 /// check_rules then asks the extra parameters to remove min_gain of the special case's misfit
 /// where they act, and more than the noise there.
 HypothesisEvidence nested_evidence(const MisfitWhereTheyDiffer& estimation, const MisfitWhereTheyDiffer* validation);
+/// The rules for a richer law against its special case, on `nested_evidence`: check_rules, and
+/// "explains_where_they_differ": where the two differ, the richer law removes at least as much of
+/// the special case's misfit as it leaves beyond the noise's own misfit there, (cost_null - cost) /
+/// (cost - noise_cost) >= 1. A richer law that only absorbs part of a mismatch it does not explain
+/// (a stick-slip the simulated sign law cannot follow, an unmodelled mode) fits better there
+/// without being the missing law.
+std::vector<RuleCheck> check_nested_rules(const HypothesisEvidence& e, const AcceptanceRules& rules = {});
 
 }  // namespace sets
