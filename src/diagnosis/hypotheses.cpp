@@ -478,12 +478,18 @@ std::vector<Trial> uncalibrated_special_cases(const Context& c, const Hypothesis
 
 using Box = std::map<std::string, std::array<double, 3>>;  // parameter -> estimate, lo, hi
 
-// A law's output-error intervals at its optimum, as stage 4 computes them: the calibration
-// continued (a second budget: a rough cost such as Stribeck's stops short of it), then refined
-// with the final substeps. Empty when they cannot be built (then nothing is excluded).
-Box intervals_at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t) {
-  const DiagnosisOptions& opt = c.options;
+// A richer law at its optimum: the calibration continued (a second budget: a rough cost such as
+// Stribeck's stops short of it; `model`, screening substeps), and there, refined with the final
+// substeps, its output-error intervals as stage 4 computes them (`box`, empty when they cannot be
+// built: then nothing is excluded). Both parts of the nested rule judge the law here.
+struct AtOptimum {
+  ModelFile model;
   Box box;
+};
+AtOptimum at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t) {
+  const DiagnosisOptions& opt = c.options;
+  AtOptimum out{t.model, {}};
+  Box& box = out.box;
   try {
     Simulator fast(t.model, c.estimation, {opt.screening_substeps}), s(t.model, c.estimation, {opt.final_substeps});
     const std::vector<int> fr = s.free_parameters();
@@ -493,6 +499,7 @@ Box intervals_at_optimum(const Context& c, const HypothesisSearch& h, const Tria
     o.scale = scales_for(t.model, fr, ks);
     o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
     const CalibrationResult further = calibrate(fast, values_of(t.model), fr, o);
+    if (further.ok && further.cost < t.cost) store_values(out.model, further.parameters);
     const CalibrationResult r =
         refine_with_final_substeps(c, s, further.ok && further.cost < t.cost ? further.parameters : values_of(t.model), fr, o);
     if (!r.ok) throw NumericalError("the law blows up with the final substeps");
@@ -503,7 +510,7 @@ Box intervals_at_optimum(const Context& c, const HypothesisSearch& h, const Tria
   } catch (const std::exception&) {
     box.clear();  // no interval: the special case is not excluded
   }
-  return box;
+  return out;
 }
 
 // Each trial against the acceptance rules, then each accepted richer law against its special
@@ -524,10 +531,13 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
     if (trials[j].ok) special_cases.push_back(&trials[j]);
   for (const auto& b : baselines)
     if (b.ok) special_cases.push_back(&b);
-  std::map<std::size_t, Box> intervals;
+  std::map<std::size_t, AtOptimum> optima;
+  auto optimum_of = [&](std::size_t i) -> const AtOptimum& {
+    if (!optima.count(i)) optima.emplace(i, at_optimum(c, h, trials[i]));
+    return optima.at(i);
+  };
   auto interval_of = [&](std::size_t i, const std::string& name) -> std::array<double, 3> {
-    if (!intervals.count(i)) intervals[i] = intervals_at_optimum(c, h, trials[i]);
-    const auto& box = intervals[i];
+    const auto& box = optimum_of(i).box;
     const auto it = box.find(name);
     return it == box.end() ? std::array<double, 3>{kNaN, -inf, inf} : it->second;
   };
@@ -544,7 +554,9 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
     for (const Trial* j : special_cases) {
       Fixed fixed;
       if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
-      if (const auto checks = check_nested_rules(against(c, noise, trials[i], *j), rules); !passes(checks)) {
+      Trial richer = trials[i];
+      richer.model = optimum_of(i).model;
+      if (const auto checks = check_nested_rules(against(c, noise, richer, *j), rules); !passes(checks)) {
         trials[i].accepted = false;
         std::string failed;
         for (const auto& k : checks)
