@@ -427,34 +427,17 @@ HypothesisEvidence evidence_of(const Round& r, const NoiseFloor& noise, const Tr
   return e;
 }
 
-// The outputs of a calibrated trial on one record (screening substeps, as its cost); empty when
-// it cannot be simulated there.
-Eigen::MatrixXd outputs_on(const Context& c, const Recording& data, const Trial& t) {
-  try {
-    Simulator s(t.model, data, {c.options.screening_substeps});
-    Eigen::MatrixXd y;
-    if (s.simulate_outputs(values_of(t.model), y) && y.allFinite()) return y;
-  } catch (const std::exception&) {
-  }
-  return {};
-}
-
 // Nested hypotheses: a richer law is judged against each special case of it that was calibrated,
-// by the same rules with that special case as the baseline, on the samples where the two
-// calibrated models differ by more than the noise (acceptance.hpp, nested_evidence): its extra
-// parameters act only there (near zero velocity for Stribeck's breakaway, on one direction for
-// asymmetric friction), so their gain is measured against the special case's misfit and the
-// noise's misfit there, not diluted by the rest of the record. The switch-off rule does not
-// apply: the special case, calibrated, is the richer law with its extra terms switched off and
-// every other parameter free.
-HypothesisEvidence against(const Context& c, const NoiseFloor& noise, const Trial& richer, const Trial& special) {
-  auto where_they_differ = [&](const Recording& data, const Simulator& nominal) {
-    return misfit_where_they_differ(nominal.measured(), outputs_on(c, data, special), outputs_on(c, data, richer), noise.sigma);
-  };
-  const MisfitWhereTheyDiffer est = where_they_differ(c.estimation, c.exact);
-  if (!c.validation || !c.exact_validation) return nested_evidence(est, nullptr);
-  const MisfitWhereTheyDiffer val = where_they_differ(*c.validation, *c.exact_validation);
-  return nested_evidence(est, &val);
+// by the same rules with that special case as the baseline (its extra parameters must remove the
+// share of misfit the rules ask, on estimation and validation, and more than the noise). The
+// switch-off rule does not apply: the special case, calibrated, is the richer law with its extra
+// terms switched off and every other parameter free.
+HypothesisEvidence against(const Round& r, const NoiseFloor& noise, const Trial& richer, const Trial& special) {
+  HypothesisEvidence e = evidence_of(r, noise, richer);
+  e.cost_null = special.cost;
+  e.cost_null_validation = special.cost_val;
+  e.cost_neutral = kNaN;
+  return e;
 }
 
 // The special cases of an accepted law that were not calibrated in this round are, as baselines
@@ -478,18 +461,12 @@ std::vector<Trial> uncalibrated_special_cases(const Context& c, const Hypothesis
 
 using Box = std::map<std::string, std::array<double, 3>>;  // parameter -> estimate, lo, hi
 
-// A richer law at its optimum: the calibration continued (a second budget: a rough cost such as
-// Stribeck's stops short of it; `model`, screening substeps), and there, refined with the final
-// substeps, its output-error intervals as stage 4 computes them (`box`, empty when they cannot be
-// built: then nothing is excluded). Both parts of the nested rule judge the law here.
-struct AtOptimum {
-  ModelFile model;
-  Box box;
-};
-AtOptimum at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t) {
+// A law's output-error intervals at its optimum, as stage 4 computes them: the calibration
+// continued (a second budget: a rough cost such as Stribeck's stops short of it), then refined
+// with the final substeps. Empty when they cannot be built (then nothing is excluded).
+Box intervals_at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t) {
   const DiagnosisOptions& opt = c.options;
-  AtOptimum out{t.model, {}};
-  Box& box = out.box;
+  Box box;
   try {
     Simulator fast(t.model, c.estimation, {opt.screening_substeps}), s(t.model, c.estimation, {opt.final_substeps});
     const std::vector<int> fr = s.free_parameters();
@@ -499,7 +476,6 @@ AtOptimum at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t
     o.scale = scales_for(t.model, fr, ks);
     o.max_evaluations = 80 * static_cast<int>(fr.size() + 1);
     const CalibrationResult further = calibrate(fast, values_of(t.model), fr, o);
-    if (further.ok && further.cost < t.cost) store_values(out.model, further.parameters);
     const CalibrationResult r =
         refine_with_final_substeps(c, s, further.ok && further.cost < t.cost ? further.parameters : values_of(t.model), fr, o);
     if (!r.ok) throw NumericalError("the law blows up with the final substeps");
@@ -510,7 +486,7 @@ AtOptimum at_optimum(const Context& c, const HypothesisSearch& h, const Trial& t
   } catch (const std::exception&) {
     box.clear();  // no interval: the special case is not excluded
   }
-  return out;
+  return box;
 }
 
 // Each trial against the acceptance rules, then each accepted richer law against its special
@@ -531,13 +507,10 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
     if (trials[j].ok) special_cases.push_back(&trials[j]);
   for (const auto& b : baselines)
     if (b.ok) special_cases.push_back(&b);
-  std::map<std::size_t, AtOptimum> optima;
-  auto optimum_of = [&](std::size_t i) -> const AtOptimum& {
-    if (!optima.count(i)) optima.emplace(i, at_optimum(c, h, trials[i]));
-    return optima.at(i);
-  };
+  std::map<std::size_t, Box> intervals;
   auto interval_of = [&](std::size_t i, const std::string& name) -> std::array<double, 3> {
-    const auto& box = optimum_of(i).box;
+    if (!intervals.count(i)) intervals[i] = intervals_at_optimum(c, h, trials[i]);
+    const auto& box = intervals[i];
     const auto it = box.find(name);
     return it == box.end() ? std::array<double, 3>{kNaN, -inf, inf} : it->second;
   };
@@ -554,14 +527,9 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
     for (const Trial* j : special_cases) {
       Fixed fixed;
       if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
-      Trial richer = trials[i];
-      richer.model = optimum_of(i).model;
-      if (const auto checks = check_nested_rules(against(c, noise, richer, *j), rules); !passes(checks)) {
+      if (!passes(check_rules(against(r, noise, trials[i], *j), rules))) {
         trials[i].accepted = false;
-        std::string failed;
-        for (const auto& k : checks)
-          if (!k.passed) failed += (failed.empty() ? "" : ", ") + k.name + " " + fmt(k.value) + " < " + fmt(k.threshold);
-        trials[i].not_beyond = j->cand.effect + " (where the two differ: " + failed + ")";
+        trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
       } else if (std::string why; !excludes(i, fixed, why)) {
         trials[i].accepted = false;
         trials[i].not_beyond = j->cand.effect + " (output-error interval linearised at its optimum: " + why + ")";

@@ -57,35 +57,6 @@ TEST(Diagnosis, RicherLawNamedOnlyWhenTheDataExcludeItsSpecialCase) {
   }
 }
 
-// Asymmetric friction (different Coulomb levels per direction) on a development plant, effect
-// forced (seed 700 022 of docs/reproduction/diagnosis.md): its extra parameters act only where
-// the calibrated asymmetric law and its special case Coulomb friction + offset differ, so judged
-// on the whole record their gain was diluted below the nested rule's share and the plant was
-// named `coulomb_friction`, `constant_offset`; judged where the two differ, asymmetric friction.
-TEST(Diagnosis, AsymmetricFrictionJudgedWhereItDiffersFromCoulombPlusOffset) {
-  RandomPlantOptions ro;
-  ro.effect = "asymmetric_friction";
-  ro.effects = 1;
-  const SyntheticPlant p = random_plant(700022, ro);
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation);
-  ASSERT_FALSE(d.effects.empty()) << d.verdict;
-  EXPECT_EQ(d.effects.front().name, "asymmetric_friction") << d.effects.front().evidence;
-  for (const auto& e : d.effects) EXPECT_NE(e.name, "constant_offset");
-}
-
-// A Coulomb plant on which Stribeck friction fits better near zero velocity, where both laws leave
-// a misfit 30x the noise's (development plant 800 007): the richer law absorbs a part of a
-// mismatch it does not explain and must not be named (with the share rules alone where the two
-// differ it was: `stribeck_friction`).
-TEST(Diagnosis, RicherLawThatOnlyAbsorbsPartOfTheMismatchWhereItActsIsNotNamed) {
-  const SyntheticPlant p = random_plant(800007);
-  ASSERT_EQ(p.effects.size(), 1u);
-  ASSERT_EQ(p.effects.front().name, "coulomb_friction");
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation);
-  ASSERT_FALSE(d.effects.empty()) << d.verdict;
-  EXPECT_EQ(d.effects.front().name, "coulomb_friction") << d.effects.front().evidence;
-}
-
 TEST(Diagnosis, EmpsNamesCoulombFrictionAndOffset) {
   const auto model = test::shared_data("emps/nominal.json");
   const auto est = test::shared_data("emps/estimation.csv");
