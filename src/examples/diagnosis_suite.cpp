@@ -68,7 +68,13 @@ SuitePlantResult run_suite_plant(const SyntheticPlant& p, const DiagnosisOptions
     r.answer = d.nothing_missing ? "nothing_missing" : d.unexplained ? "unexplained" : "missing";
     r.fit_nominal = d.fit_nominal_validation.empty() ? 0 : d.fit_nominal_validation.front();
     r.fit_augmented = d.fit_augmented_validation.empty() ? 0 : d.fit_augmented_validation.front();
-    auto ratio = [&](const OutputNoise& n, std::size_t j) { return p.noise_sigma[j] > 0 ? n.estimate.sigma / p.noise_sigma[j] : 0.0; };
+    // Against the truth of the record the estimate was read from (the generators scale the noise
+    // to each record's own signal spread, so the two records' truths differ).
+    auto ratio = [&](const OutputNoise& n, std::size_t j) {
+      const bool val = n.record == "validation" && j < p.noise_sigma_validation.size();
+      const double truth = val ? p.noise_sigma_validation[j] : p.noise_sigma[j];
+      return truth > 0 ? n.estimate.sigma / truth : 0.0;
+    };
     for (std::size_t j = 0; j < d.noise_final.size() && j < p.noise_sigma.size(); ++j) r.noise_ratio.push_back(ratio(d.noise_final[j], j));
     for (std::size_t j = 0; j < d.noise.size() && j < p.noise_sigma.size(); ++j) r.noise_ratio_nominal.push_back(ratio(d.noise[j], j));
     // Coverage: true values that map cleanly, for effects named at the place they are.
