@@ -363,8 +363,10 @@ Eigen::MatrixXd past_input_regressor(const Eigen::Ref<const Eigen::MatrixXd>& u,
   return Z;
 }
 
-PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
-                                     const Eigen::Ref<const Eigen::MatrixXd>& y, const PropagatorOptions& o) {
+namespace {
+
+void check_propagator_input(const Eigen::Ref<const Eigen::MatrixXd>& u, const Eigen::Ref<const Eigen::MatrixXd>& y,
+                            const PropagatorOptions& o) {
   const int N = static_cast<int>(u.rows());
   const int nu = static_cast<int>(u.cols()), ny = static_cast<int>(y.cols());
   const int n = o.order, p = o.past;
@@ -380,29 +382,32 @@ PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
   check_finite(u, "input");
   check_finite(y, "output");
   const int cols = nu * p + (o.estimate_d ? nu : 0);
-  const int M = N - p;
-  if (M <= cols + 1)
+  if (N - p <= cols + 1)
     throw InputError("too few samples: N = " + std::to_string(N) + ", the least squares for [CK D] with p = " +
                      std::to_string(p) + " needs more than " + std::to_string(p + cols + 1));
   for (int m = 0; m < nu; ++m)
     if (u.col(m).maxCoeff() == u.col(m).minCoeff())
       throw InputError("input column " + std::to_string(m + 1) + " is constant (" + std::to_string(u(0, m)) +
                        "): a constant input does not excite the system, CK cannot be estimated");
+}
 
-  // Step 1: y(t) = CK u_p(t) + D u(t), t = p .. N-1.
-  const Eigen::MatrixXd Z = past_input_regressor(u, p, o.estimate_d);
-  const Eigen::MatrixXd Y = y.bottomRows(M);
+// Step 1: y(t) = CK u_p(t) + D u(t), t = p .. N-1, by least squares on the past-input regressor Z.
+void estimate_markov_parameters(const Eigen::MatrixXd& Z, int nu, const Eigen::Ref<const Eigen::MatrixXd>& y,
+                                const PropagatorOptions& o, PropagatorResult& r) {
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Z);
   qr.setThreshold(least_squares_rank_threshold);
-  if (qr.rank() < cols)
-    throw InputError("the inputs are not persistently exciting of order p = " + std::to_string(p) +
-                     ": the regressor [u_p; u] has rank " + std::to_string(qr.rank()) + " < " + std::to_string(cols));
-  const Eigen::MatrixXd Theta = qr.solve(Y);
-  PropagatorResult r;
-  r.markov = Theta.topRows(nu * p).transpose();
-  r.d = o.estimate_d ? Eigen::MatrixXd(Theta.bottomRows(nu).transpose()) : Eigen::MatrixXd::Zero(ny, nu);
+  if (qr.rank() < Z.cols())
+    throw InputError("the inputs are not persistently exciting of order p = " + std::to_string(o.past) +
+                     ": the regressor [u_p; u] has rank " + std::to_string(qr.rank()) + " < " + std::to_string(Z.cols()));
+  const Eigen::MatrixXd Theta = qr.solve(y.bottomRows(Z.rows()));
+  r.markov = Theta.topRows(nu * o.past).transpose();
+  r.d = o.estimate_d ? Eigen::MatrixXd(Theta.bottomRows(nu).transpose()) : Eigen::MatrixXd::Zero(y.cols(), nu);
+}
 
-  // Step 2: block-upper-triangular Gamma_p K, block (i, k) = CA^{p-1-(k-i)} B = markov block k-i.
+// Step 2: block-upper-triangular Gamma_p K, block (i, k) = CA^{p-1-(k-i)} B = markov block k-i,
+// and its singular values; returns the absolute rank tolerance.
+double build_gamma_k(const PropagatorOptions& o, PropagatorResult& r) {
+  const int p = o.past, ny = static_cast<int>(r.markov.rows()), nu = static_cast<int>(r.markov.cols()) / p;
   r.gamma_k = Eigen::MatrixXd::Zero(ny * p, nu * p);
   for (int i = 0; i < p; ++i)
     for (int k = i; k < p; ++k) r.gamma_k.block(i * ny, k * nu, ny, nu) = r.markov.block(0, (k - i) * nu, ny, nu);
@@ -412,52 +417,57 @@ PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
   const auto& s = r.gamma_k_singular_values;
   const double abs_tol = o.rank_tolerance * s(0);
   const int rank = s(0) > 0 ? static_cast<int>((s.array() > abs_tol).count()) : 0;
-  if (rank < n)
-    throw InputError("order n_x = " + std::to_string(n) + " is larger than the data support: Gamma_p K^ has numerical rank " +
+  if (rank < o.order)
+    throw InputError("order n_x = " + std::to_string(o.order) + " is larger than the data support: Gamma_p K^ has numerical rank " +
                      std::to_string(rank) + " (relative tolerance " + std::to_string(o.rank_tolerance) + ")");
+  return abs_tol;
+}
 
-  // Step 3: independent rows, propagator, states.
-  auto row = [&](int lag, int j) -> Eigen::RowVectorXd { return r.gamma_k.row(lag * ny + j); };
+// Step 3a: the independent rows of Gamma_p K^, chosen greedily or given.
+std::vector<ObservabilityRow> observability_rows(const PropagatorOptions& o, const PropagatorResult& r, double abs_tol) {
+  const int n = o.order, p = o.past, ny = static_cast<int>(r.markov.rows());
   if (o.rows.empty()) {
-    r.rows = greedy_rows(row, n, ny, p - 2, o.selection, abs_tol);
-    if (static_cast<int>(r.rows.size()) < n)
+    auto row = [&](int lag, int j) -> Eigen::RowVectorXd { return r.gamma_k.row(lag * ny + j); };
+    auto rows = greedy_rows(row, n, ny, p - 2, o.selection, abs_tol);
+    if (static_cast<int>(rows.size()) < n)
       throw InputError("order n_x = " + std::to_string(n) + " is larger than the data support: only " +
-                       std::to_string(r.rows.size()) + " independent rows found in Gamma_p K^");
-  } else {
-    r.rows = o.rows;
-    if (static_cast<int>(r.rows.size()) != n)
-      throw InputError(std::to_string(r.rows.size()) + " observability rows given for order n_x = " + std::to_string(n));
-    for (const auto& rw : r.rows)
-      if (rw.lag < 0 || rw.lag > p - 2 || rw.output < 0 || rw.output >= ny)
-        throw InputError("observability row " + to_string(rw) + " is outside lags 0.." + std::to_string(p - 2) +
-                         " and outputs 1.." + std::to_string(ny));
+                       std::to_string(rows.size()) + " independent rows found in Gamma_p K^");
+    return rows;
   }
-  r.structure = CanonicalStructure(r.rows, nu, ny, o.estimate_d);
-  Eigen::MatrixXd G1(n, nu * p);
-  for (int k = 0; k < n; ++k) G1.row(k) = row(r.rows[k].lag, r.rows[k].output);
+  if (static_cast<int>(o.rows.size()) != n)
+    throw InputError(std::to_string(o.rows.size()) + " observability rows given for order n_x = " + std::to_string(n));
+  for (const auto& rw : o.rows)
+    if (rw.lag < 0 || rw.lag > p - 2 || rw.output < 0 || rw.output >= ny)
+      throw InputError("observability row " + to_string(rw) + " is outside lags 0.." + std::to_string(p - 2) +
+                       " and outputs 1.." + std::to_string(ny));
+  return o.rows;
+}
+
+// Step 3b: the propagator P (the other rows of Gamma_p K^ from the chosen ones G1) and the states
+// x^(t) = G1 u_p(t); returns the other rows' indices (lag * ny + output), in P's row order.
+std::vector<int> propagate(const Eigen::MatrixXd& Z, int p, double abs_tol, PropagatorResult& r) {
+  const int n = static_cast<int>(r.rows.size()), ny = static_cast<int>(r.markov.rows());
+  const Eigen::Index past_cols = r.gamma_k.cols();
+  Eigen::MatrixXd G1(n, past_cols);
+  for (int k = 0; k < n; ++k) G1.row(k) = r.gamma_k.row(r.rows[k].lag * ny + r.rows[k].output);
   if (smallest_singular_value(G1) <= abs_tol)
     throw InputError("the chosen observability rows are dependent in Gamma_p K^ (or the order exceeds the data support)");
   std::vector<int> other;
   for (int l = 0; l < p; ++l)
     for (int j = 0; j < ny; ++j)
       if (find_row(r.rows, {l, j}) < 0) other.push_back(l * ny + j);
-  Eigen::MatrixXd G2(other.size(), nu * p);
+  Eigen::MatrixXd G2(other.size(), past_cols);
   for (std::size_t k = 0; k < other.size(); ++k) G2.row(k) = r.gamma_k.row(other[k]);
   const Eigen::MatrixXd G1G1t = G1 * G1.transpose();
   r.propagator = G1G1t.ldlt().solve(G1 * G2.transpose()).transpose();
-  r.states = G1 * Z.leftCols(nu * p).transpose();
+  r.states = G1 * Z.leftCols(past_cols).transpose();
   r.first_state = p;
+  return other;
+}
 
-  // Step 4: least squares for theta~.
-  r.regression = canonical_regression(r.structure, r.states, p, u, y);
-  const RegressionLeastSquares ls = regression_least_squares(r.regression);
-  if (ls.rank < r.structure.parameter_count())
-    throw InputError("the canonical parameters are not identifiable from these data: regressor rank " +
-                     std::to_string(ls.rank) + " < " + std::to_string(r.structure.parameter_count()));
-  r.theta = ls.theta;
-  r.model = r.structure.to_model(r.theta);
-
-  // Equation (6): A_c and C_c read directly from [I; P].
+// Equation (6): A_c and C_c of the propagator model read directly from [I; P].
+void read_propagator_model(const std::vector<int>& other, PropagatorResult& r) {
+  const int n = static_cast<int>(r.rows.size()), ny = static_cast<int>(r.markov.rows());
   auto ip_row = [&](int lag, int j) -> Eigen::RowVectorXd {
     const int k = find_row(r.rows, {lag, j});
     if (k >= 0) return Eigen::RowVectorXd::Unit(n, k);
@@ -467,6 +477,31 @@ PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
   r.propagator_model = r.model;
   for (int i = 0; i < n; ++i) r.propagator_model.A.row(i) = ip_row(r.rows[i].lag + 1, r.rows[i].output);
   for (int j = 0; j < ny; ++j) r.propagator_model.C.row(j) = ip_row(0, j);
+}
+
+}  // namespace
+
+PropagatorResult identify_propagator(const Eigen::Ref<const Eigen::MatrixXd>& u,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& y, const PropagatorOptions& o) {
+  check_propagator_input(u, y, o);
+  const int nu = static_cast<int>(u.cols()), ny = static_cast<int>(y.cols()), p = o.past;
+  const Eigen::MatrixXd Z = past_input_regressor(u, p, o.estimate_d);
+  PropagatorResult r;
+  estimate_markov_parameters(Z, nu, y, o, r);
+  const double abs_tol = build_gamma_k(o, r);
+  r.rows = observability_rows(o, r, abs_tol);
+  r.structure = CanonicalStructure(r.rows, nu, ny, o.estimate_d);
+  const std::vector<int> other = propagate(Z, p, abs_tol, r);
+
+  // Step 4: least squares for theta~.
+  r.regression = canonical_regression(r.structure, r.states, p, u, y);
+  const RegressionLeastSquares ls = regression_least_squares(r.regression);
+  if (ls.rank < r.structure.parameter_count())
+    throw InputError("the canonical parameters are not identifiable from these data: regressor rank " +
+                     std::to_string(ls.rank) + " < " + std::to_string(r.structure.parameter_count()));
+  r.theta = ls.theta;
+  r.model = r.structure.to_model(r.theta);
+  read_propagator_model(other, r);
   return r;
 }
 

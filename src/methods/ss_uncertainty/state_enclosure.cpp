@@ -262,168 +262,220 @@ void check_bounds(const Eigen::VectorXd& v, Eigen::Index size, const char* what,
                        " must be finite and >= 0");
 }
 
-}  // namespace
+// The enclosures of one run that do not meet, written out after the rounding scopes (printing in
+// upward rounding would change the digits).
+class Clashes {
+ public:
+  void add(int state, int t, const I& one, const I& other) { clashes_.push_back({state, t, one, other}); }
 
-StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
-                              const Eigen::Ref<const Eigen::MatrixXd>& y, const GuaranteedSetAssumptions& a) {
+  void write_to(const CanonicalStructure& st, std::vector<std::string>& out) const {
+    for (const Clash& c : clashes_) {
+      std::ostringstream os;
+      os << "state " << c.state + 1 << " (" << to_string(st.rows()[static_cast<std::size_t>(c.state)]) << ") at sample "
+         << c.t << ": the enclosures " << c.one << " and " << c.other << " do not meet";
+      out.push_back(os.str());
+    }
+  }
+
+ private:
+  struct Clash {
+    int state, t;
+    Interval one, other;
+  };
+  std::vector<Clash> clashes_;
+};
+
+void check_assumptions(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                       const Eigen::Ref<const Eigen::MatrixXd>& y, const GuaranteedSetAssumptions& a) {
   const CanonicalStructure& st = id.structure;
   const int n = st.nx(), nu = st.nu(), ny = st.ny(), p = id.first_state;
   const int N = static_cast<int>(u.rows()), K = static_cast<int>(id.states.cols());
   if (u.cols() != nu || y.cols() != ny || y.rows() != N || K != N - p)
     throw InputError("guaranteed set: u and y are not the data the model was identified from");
   check_bounds(a.noise_bound, ny, "noise_bound", "output");
-  const bool user = a.state_error_bound.size() > 0;
-  if (user) check_bounds(a.state_error_bound, n, "state_error_bound", "state");
+  if (a.state_error_bound.size() > 0) check_bounds(a.state_error_bound, n, "state_error_bound", "state");
   else if (a.tail_bound.size() == 0)
     throw InputError("guaranteed set: give a tail bound (data-based state bound) or a state error bound");
   else check_bounds(a.tail_bound, ny, "tail_bound", "output");
+}
 
-  StateEnclosure X;
-  X.first = p;
-  X.states.resize(n, K);
-  X.unit_steps = IntervalMatrix::Constant(n, K - 1, Interval(0.0));
-  // Enclosures that do not meet, written out after the rounding scopes (printing in upward
-  // rounding would change the digits).
-  struct Clash {
-    int state, t;
-    Interval one, other;
-  };
-  std::vector<Clash> clashes;
-  auto contradiction = [&](int state, int t, const I& one, const I& other) { clashes.push_back({state, t, one, other}); };
-  auto report = [&] {
-    for (const Clash& c : clashes) {
-      std::ostringstream os;
-      os << "state " << c.state + 1 << " (" << to_string(st.rows()[static_cast<std::size_t>(c.state)]) << ") at sample "
-         << c.t << ": the enclosures " << c.one << " and " << c.other << " do not meet";
-      X.contradictions.push_back(os.str());
-    }
-  };
-  // Lag-0 rows of an output with D known: x_c,k(t) = y_o(t) - v_o(t), whatever else is assumed.
-  auto output_only = [&](int k, int t) -> bool {
-    return st.rows()[static_cast<std::size_t>(k)].lag == 0 && !st.estimate_d() && t < N;
-  };
+// Lag-0 rows of an output with D known: x_c,k(t) = y_o(t) - v_o(t), whatever else is assumed.
+bool row_is_an_output(const CanonicalStructure& st, int k, int t, int N) {
+  return st.rows()[static_cast<std::size_t>(k)].lag == 0 && !st.estimate_d() && t < N;
+}
 
-  if (user) {
-    {
-      RoundingScope upward;
-      for (int k = 0; k < n; ++k)
-        for (int c = 0; c < K; ++c) {
-          I x = I(id.states(k, c)) + I(-a.state_error_bound[k], a.state_error_bound[k]);
-          const int t = p + c, o = st.rows()[static_cast<std::size_t>(k)].output;
-          if (output_only(k, t)) {
-            bool empty = false;
-            const I obs = I(y(t, o)) + I(-a.noise_bound[o], a.noise_bound[o]);
-            const I m = meet(x, obs, empty);
-            if (empty) contradiction(k, t, x, obs);
-            else x = m;
-          }
-          X.states(k, c) = x;
-        }
-      for (int i = 0; i < n; ++i)
-        if (st.a_unit(i) >= 0)
-          for (int c = 0; c + 1 < K; ++c)
-            X.unit_steps(i, c) = I(X.states(i, c + 1)) - I(X.states(st.a_unit(i), c));
-    }
-    report();
-    return X;
-  }
-
-  // Data-based: the Markov-parameter ellipsoid of every output the rows use.
-  const Eigen::MatrixXd Z = past_input_regressor(u, p, st.estimate_d());
-  const Eigen::Index cols = Z.cols();
-  const VerifiedGram gram = verify_gram(Z);
-  std::vector<MarkovEllipsoid> ell(static_cast<std::size_t>(ny));
-  X.markov_level = Eigen::VectorXd::Constant(ny, std::numeric_limits<double>::quiet_NaN());
-  std::vector<Eigen::VectorXd> g(static_cast<std::size_t>(ny));
-  for (int o = 0; o < ny; ++o) {
-    bool used = false;
-    for (const auto& r : st.rows()) used = used || r.output == o;
-    if (!used) continue;
-    g[static_cast<std::size_t>(o)].resize(cols);
-    g[static_cast<std::size_t>(o)].head(nu * p) = id.markov.row(o).transpose();
-    if (st.estimate_d()) g[static_cast<std::size_t>(o)].tail(nu) = id.d.row(o).transpose();
-    const double wbar = (Interval(a.noise_bound[o]) + Interval(a.tail_bound[o])).upper();
-    ell[static_cast<std::size_t>(o)] =
-        markov_ellipsoid(gram, Z, y.col(o).tail(N - p), g[static_cast<std::size_t>(o)], wbar, o, X.contradictions);
-    X.markov_level[o] = ell[static_cast<std::size_t>(o)].level;
-  }
-  // ||a|| <= sqrt(p) max_t ||u(t)|| for every window a of p input samples.
-  double window_norm = 0;
-  {
-    RoundingScope upward;
-    I largest(0.0);
-    for (int t = 0; t < N; ++t) {
-      I s(0.0);
-      for (int m = 0; m < nu; ++m) s += boost::numeric::square(I(u(t, m)));
-      largest = I(0.0, std::max(largest.upper(), s.upper()));
-    }
-    window_norm = boost::numeric::sqrt(I(static_cast<double>(p)) * largest).upper();
-  }
-  // Column of the Markov parameter C_o A^j B (input block) in g: block p-1-j.
-  auto block = [&](int j) { return static_cast<Eigen::Index>((p - 1 - j) * nu); };
-
-  int max_lag = 0;
-  for (const auto& r : st.rows()) max_lag = std::max(max_lag, r.lag);
-  const WindowFunctionals windows(gram, u, p, cols, K, max_lag);
-  for (int k = 0; k < n; ++k) {
-    const int l = st.rows()[static_cast<std::size_t>(k)].lag, o = st.rows()[static_cast<std::size_t>(k)].output;
-    const MarkovEllipsoid& m = ell[static_cast<std::size_t>(o)];
-    const Eigen::VectorXd& go = g[static_cast<std::size_t>(o)];
-    // Propagator: x^_k(t) = a^T g^ with a = u_p(t+l) without its last l blocks; the stored x^
-    // is a floating-point product (error <= gamma_cols ||a|| ||g_c||).
-    const double rounding = (Interval(gram.gamma_cols) * Interval(m.g_norm)).upper();
-    const Eigen::VectorXd rp = functional_radii(m, windows.bounds(l, p), rounding);
-    // Output: x_c,k(t) = y_o(t+l) - v - D_o u(t+l) - sum_{j<l} (C_o A^j B) u(t+l-1-j), for t+l < N.
-    // Its functionals use the columns from nu (p - l) on (blocks p-1-j, j < l; then D): Wo holds
-    // those, one row per c, written block column by block column (contiguous).
-    const Eigen::Index wo_first = nu * (p - l);
-    Eigen::MatrixXd Wo = Eigen::MatrixXd::Zero(K, cols - wo_first);
-    for (int j = 0; j < l; ++j) Wo.block(0, block(j) - wo_first, K - l, nu) = u.middleRows(p + l - 1 - j, K - l);  // u(t+l-1-j)
-    if (st.estimate_d()) Wo.block(0, nu * p - wo_first, K - l, nu) = u.middleRows(p + l, K - l);  // u(t+l)
-    const Eigen::VectorXd ro = Wo.cols() == 0 ? Eigen::VectorXd::Zero(K)
-                                              : functional_radii(m, column_range_bounds(gram, Wo, wo_first), 0.0);
-    RoundingScope upward;
+// With a user bound on the state error: x^ +- bound, met with the output where a row is one.
+void enclose_with_state_bound(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& y,
+                              const GuaranteedSetAssumptions& a, StateEnclosure& X, Clashes& clashes) {
+  const CanonicalStructure& st = id.structure;
+  const int n = st.nx(), p = id.first_state, K = static_cast<int>(id.states.cols());
+  RoundingScope upward;
+  for (int k = 0; k < n; ++k)
     for (int c = 0; c < K; ++c) {
-      const int t = p + c;
-      const double radius = (I(a.tail_bound[o]) + I(rp[c])).upper();
-      I x = I(id.states(k, c)) + I(-radius, radius);
-      if (c + l < K) {
-        I obs(y(t + l, o));
+      I x = I(id.states(k, c)) + I(-a.state_error_bound[k], a.state_error_bound[k]);
+      const int t = p + c, o = st.rows()[static_cast<std::size_t>(k)].output;
+      if (row_is_an_output(st, k, t, static_cast<int>(y.rows()))) {
+        bool empty = false;
+        const I obs = I(y(t, o)) + I(-a.noise_bound[o], a.noise_bound[o]);
+        const I m = meet(x, obs, empty);
+        if (empty) clashes.add(k, t, x, obs);
+        else x = m;
+      }
+      X.states(k, c) = x;
+    }
+  for (int i = 0; i < n; ++i)
+    if (st.a_unit(i) >= 0)
+      for (int c = 0; c + 1 < K; ++c) X.unit_steps(i, c) = I(X.states(i, c + 1)) - I(X.states(st.a_unit(i), c));
+}
+
+// ||a|| <= sqrt(p) max_t ||u(t)|| for every window a of p input samples.
+double window_norm_bound(const Eigen::Ref<const Eigen::MatrixXd>& u, int p) {
+  RoundingScope upward;
+  I largest(0.0);
+  for (Eigen::Index t = 0; t < u.rows(); ++t) {
+    I s(0.0);
+    for (Eigen::Index m = 0; m < u.cols(); ++m) s += boost::numeric::square(I(u(t, m)));
+    largest = I(0.0, std::max(largest.upper(), s.upper()));
+  }
+  return boost::numeric::sqrt(I(static_cast<double>(p)) * largest).upper();
+}
+
+// Without a state bound: every state from the Markov-parameter ellipsoid of its output, through
+// the propagator and, where the row allows, through the output; then the unit rows of A_c.
+class DataBasedEnclosure {
+ public:
+  DataBasedEnclosure(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                     const Eigen::Ref<const Eigen::MatrixXd>& y, const GuaranteedSetAssumptions& a)
+      : id_(id), st_(id.structure), u_(u), y_(y), a_(a), p_(id.first_state), N_(static_cast<int>(u.rows())),
+        K_(static_cast<int>(id.states.cols())), Z_(past_input_regressor(u, p_, st_.estimate_d())), gram_(verify_gram(Z_)) {}
+
+  void enclose(StateEnclosure& X, Clashes& clashes) {
+    output_ellipsoids(X);
+    int max_lag = 0;
+    for (const auto& r : st_.rows()) max_lag = std::max(max_lag, r.lag);
+    const WindowFunctionals windows(gram_, u_, p_, Z_.cols(), K_, max_lag);
+    for (int k = 0; k < st_.nx(); ++k) enclose_row(k, windows, X, clashes);
+    const double window_norm = window_norm_bound(u_, p_);
+    for (int i = 0; i < st_.nx(); ++i)
+      if (st_.a_unit(i) >= 0) enclose_unit_steps(i, window_norm, X, clashes);
+  }
+
+ private:
+  // Column of the Markov parameter C_o A^j B (input block) in g: block p-1-j.
+  Eigen::Index block(int j) const { return static_cast<Eigen::Index>((p_ - 1 - j) * st_.nu()); }
+
+  // The Markov-parameter ellipsoid of every output the rows use.
+  void output_ellipsoids(StateEnclosure& X) {
+    const int ny = st_.ny(), nu = st_.nu();
+    ell_.resize(static_cast<std::size_t>(ny));
+    g_.resize(static_cast<std::size_t>(ny));
+    X.markov_level = Eigen::VectorXd::Constant(ny, std::numeric_limits<double>::quiet_NaN());
+    for (int o = 0; o < ny; ++o) {
+      bool used = false;
+      for (const auto& r : st_.rows()) used = used || r.output == o;
+      if (!used) continue;
+      Eigen::VectorXd& g = g_[static_cast<std::size_t>(o)];
+      g.resize(Z_.cols());
+      g.head(nu * p_) = id_.markov.row(o).transpose();
+      if (st_.estimate_d()) g.tail(nu) = id_.d.row(o).transpose();
+      const double wbar = (Interval(a_.noise_bound[o]) + Interval(a_.tail_bound[o])).upper();
+      ell_[static_cast<std::size_t>(o)] = markov_ellipsoid(gram_, Z_, y_.col(o).tail(N_ - p_), g, wbar, o, X.contradictions);
+      X.markov_level[o] = ell_[static_cast<std::size_t>(o)].level;
+    }
+  }
+
+  // Row k: the propagator's x^_k(t) = a^T g^ with a = u_p(t+l) without its last l blocks (the
+  // stored x^ is a floating-point product, error <= gamma_cols ||a|| ||g_c||), met with the
+  // output x_c,k(t) = y_o(t+l) - v - D_o u(t+l) - sum_{j<l} (C_o A^j B) u(t+l-1-j) for t+l < N.
+  void enclose_row(int k, const WindowFunctionals& windows, StateEnclosure& X, Clashes& clashes) const {
+    const int l = st_.rows()[static_cast<std::size_t>(k)].lag, o = st_.rows()[static_cast<std::size_t>(k)].output;
+    const MarkovEllipsoid& m = ell_[static_cast<std::size_t>(o)];
+    const Eigen::VectorXd& go = g_[static_cast<std::size_t>(o)];
+    const double rounding = (Interval(gram_.gamma_cols) * Interval(m.g_norm)).upper();
+    const Eigen::VectorXd rp = functional_radii(m, windows.bounds(l, p_), rounding);
+    const Eigen::MatrixXd Wo = output_functionals(l);
+    const Eigen::Index wo_first = st_.nu() * (p_ - l);
+    const Eigen::VectorXd ro = Wo.cols() == 0 ? Eigen::VectorXd::Zero(K_)
+                                              : functional_radii(m, column_range_bounds(gram_, Wo, wo_first), 0.0);
+    RoundingScope upward;
+    for (int c = 0; c < K_; ++c) {
+      const int t = p_ + c;
+      const double radius = (I(a_.tail_bound[o]) + I(rp[c])).upper();
+      I x = I(id_.states(k, c)) + I(-radius, radius);
+      if (c + l < K_) {
+        I obs(y_(t + l, o));
         for (Eigen::Index q = 0; q < Wo.cols(); ++q)
           if (Wo(c, q) != 0) obs -= I(Wo(c, q)) * I(go[wo_first + q]);
-        const double noise = (I(a.noise_bound[o]) + I(ro[c])).upper();
+        const double noise = (I(a_.noise_bound[o]) + I(ro[c])).upper();
         obs += I(-noise, noise);
         bool empty = false;
         const I both = meet(x, obs, empty);
-        if (empty) contradiction(k, t, x, obs);
+        if (empty) clashes.add(k, t, x, obs);
         else x = both;
       }
       X.states(k, c) = x;
     }
   }
-  // Unit rows of A_c: x_c,i(t+1) - x_c,k(t) = (C_o A^l B) u(t) exactly (the tails cancel), which
+
+  // The output functionals of lag l use the columns from nu (p - l) on (blocks p-1-j, j < l; then
+  // D): one row per c, written block column by block column (contiguous).
+  Eigen::MatrixXd output_functionals(int l) const {
+    const int nu = st_.nu();
+    const Eigen::Index wo_first = nu * (p_ - l);
+    Eigen::MatrixXd Wo = Eigen::MatrixXd::Zero(K_, Z_.cols() - wo_first);
+    for (int j = 0; j < l; ++j) Wo.block(0, block(j) - wo_first, K_ - l, nu) = u_.middleRows(p_ + l - 1 - j, K_ - l);  // u(t+l-1-j)
+    if (st_.estimate_d()) Wo.block(0, nu * p_ - wo_first, K_ - l, nu) = u_.middleRows(p_ + l, K_ - l);  // u(t+l)
+    return Wo;
+  }
+
+  // Unit row i of A_c: x_c,i(t+1) - x_c,k(t) = (C_o A^l B) u(t) exactly (the tails cancel), which
   // the propagator estimates by x^_i(t+1) - x^_k(t) = c^T g^, c = u(t) in block p-1-l.
-  for (int i = 0; i < n; ++i) {
-    const int k = st.a_unit(i);
-    if (k < 0) continue;
-    const int l = st.rows()[static_cast<std::size_t>(i)].lag, o = st.rows()[static_cast<std::size_t>(i)].output;
-    const MarkovEllipsoid& m = ell[static_cast<std::size_t>(o)];
+  void enclose_unit_steps(int i, double window_norm, StateEnclosure& X, Clashes& clashes) const {
+    const int k = st_.a_unit(i);
+    const int l = st_.rows()[static_cast<std::size_t>(i)].lag, o = st_.rows()[static_cast<std::size_t>(i)].output;
+    const MarkovEllipsoid& m = ell_[static_cast<std::size_t>(o)];
     // Row c: u(p + c) in the columns of block p-1-l.
-    const Eigen::VectorXd rc = functional_radii(m, column_range_bounds(gram, u.middleRows(p, K - 1), block(l)), 0.0);
+    const Eigen::VectorXd rc = functional_radii(m, column_range_bounds(gram_, u_.middleRows(p_, K_ - 1), block(l)), 0.0);
     RoundingScope upward;
-    // Rounding of the two stored states: gamma_cols ||a|| ||g_c|| each (see above).
-    const I stored = I(2.0) * I(gram.gamma_cols) * I(m.g_norm) * I(window_norm);
-    for (int c = 0; c + 1 < K; ++c) {
+    // Rounding of the two stored states: gamma_cols ||a|| ||g_c|| each (see enclose_row).
+    const I stored = I(2.0) * I(gram_.gamma_cols) * I(m.g_norm) * I(window_norm);
+    for (int c = 0; c + 1 < K_; ++c) {
       const double radius = (I(rc[c]) + stored).upper();
-      const I direct = (I(id.states(i, c + 1)) - I(id.states(k, c))) + I(-radius, radius);
+      const I direct = (I(id_.states(i, c + 1)) - I(id_.states(k, c))) + I(-radius, radius);
       const I through = I(X.states(i, c + 1)) - I(X.states(k, c));
       bool empty = false;
       const I both = meet(direct, through, empty);
-      if (empty) contradiction(i, p + c, direct, through);
+      if (empty) clashes.add(i, p_ + c, direct, through);
       X.unit_steps(i, c) = empty ? direct : both;
     }
   }
-  report();
+
+  const PropagatorResult& id_;
+  const CanonicalStructure& st_;
+  const Eigen::Ref<const Eigen::MatrixXd> u_, y_;
+  const GuaranteedSetAssumptions& a_;
+  const int p_, N_, K_;
+  const Eigen::MatrixXd Z_;
+  const VerifiedGram gram_;
+  std::vector<MarkovEllipsoid> ell_;
+  std::vector<Eigen::VectorXd> g_;
+};
+
+}  // namespace
+
+StateEnclosure enclose_states(const PropagatorResult& id, const Eigen::Ref<const Eigen::MatrixXd>& u,
+                              const Eigen::Ref<const Eigen::MatrixXd>& y, const GuaranteedSetAssumptions& a) {
+  check_assumptions(id, u, y, a);
+  const int n = id.structure.nx(), K = static_cast<int>(id.states.cols());
+  StateEnclosure X;
+  X.first = id.first_state;
+  X.states.resize(n, K);
+  X.unit_steps = IntervalMatrix::Constant(n, K - 1, Interval(0.0));
+  Clashes clashes;
+  if (a.state_error_bound.size() > 0) enclose_with_state_bound(id, y, a, X, clashes);
+  else DataBasedEnclosure(id, u, y, a).enclose(X, clashes);
+  // The ellipsoids' contradictions (written while they were built) come before the clashes.
+  clashes.write_to(id.structure, X.contradictions);
   return X;
 }
 
