@@ -100,8 +100,8 @@ FeasibleParameterSet FeasibleParameterSet::from_interval_data(const IntervalMatr
     double largest = f.col_largest_[j], smallest = f.col_smallest_[j];
     for (Eigen::Index t = 0; t < Phi.rows(); ++t) {
       const double lo = Phi(t, j).lower(), hi = Phi(t, j).upper();
-      finite = finite & std::isfinite(lo) & std::isfinite(hi);
-      eiv = eiv | (lo != hi);
+      finite = finite && std::isfinite(lo) && std::isfinite(hi);
+      eiv = eiv || lo != hi;
       const double a = std::abs(lo), b = std::abs(hi);
       largest = std::max(largest, std::max(a, b));
       if (a > 0) smallest = std::min(smallest, a);

@@ -73,7 +73,7 @@ TEST(ExactRational, EncloseIsTheTightestIntervalOfDoubles) {
   EXPECT_EQ(e.lower(), 0.1);
   EXPECT_EQ(e.upper(), 0.1);
   // 1/3 and -1/3: a one-ulp interval holding it.
-  for (const Rational q : {Rational(1, 3), Rational(-1, 3), Rational(Rational(2, 7) * Rational(1e-300))}) {
+  for (const Rational& q : {Rational(1, 3), Rational(-1, 3), Rational(Rational(2, 7) * Rational(1e-300))}) {
     const sets::Interval I = enclose(q);
     EXPECT_TRUE(holds(I, q)) << q.get_str();
     EXPECT_LT(I.lower(), I.upper()) << q.get_str();
