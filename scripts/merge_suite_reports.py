@@ -44,7 +44,7 @@ def main(paths):
     n = one = one_right = two = two_both = two_one = clean = invented = nothing = failed = 0
     bounded = inside = cov = inside_estimate = 0
     seconds = 0.0
-    ratios, misses = [], []
+    ratios, ratios_nominal, misses = [], [], []
     confusion = defaultdict(Counter)
     tp, fp, fn = Counter(), Counter(), Counter()
     for path, c in rows(paths):
@@ -54,8 +54,10 @@ def main(paths):
         seconds += float(c[10])
         if answer.startswith("error"):
             failed += 1
-        if c[8]:
-            ratios += [float(x) for x in c[8].split(",") if x.strip()]
+        # Per output "final" or "final (nominal's)" (older chunks: one value, the nominal's).
+        for m in re.finditer(r"([-+\d.e]+)(?:\s*\(([-+\d.e]+)\))?", c[8]):
+            ratios.append(float(m[1]))
+            ratios_nominal.append(float(m[2] or m[1]))
         m = re.match(r"(\d+) of (\d+); (\d+) of (\d+)", c[9])
         if m:
             inside += int(m[1]); bounded += int(m[2]); inside_estimate += int(m[3]); cov += int(m[4])
@@ -88,11 +90,14 @@ def main(paths):
           f"(answered \"no physics is missing\": {pct(nothing, clean)})")
     print(f"- true values with a bounded-error interval: {pct(bounded, cov)}; inside it: {pct(inside, bounded)}")
     print(f"- inside the estimate (output-error PUI linearised at the estimate): {pct(inside_estimate, cov)}")
-    if ratios:
-        r = sorted(ratios)
+    for values, label in ((ratios, "final model's residual"),
+                          (ratios_nominal, "calibrated nominal's residual (the rules' floor)")):
+        if not values:
+            continue
+        r = sorted(values)
         q = lambda f: r[int(f * (len(r) - 1))]
         within = sum(0.5 <= x <= 2 for x in r)
-        print(f"- estimated / true noise level ({len(r)} outputs): median {q(0.5):.2f}, 10 % {q(0.1):.2f}, "
+        print(f"- estimated / true noise level, {label} ({len(r)} outputs): median {q(0.5):.2f}, 10 % {q(0.1):.2f}, "
               f"90 % {q(0.9):.2f}, lowest {r[0]:.2f}, highest {r[-1]:.2f}; within a factor 2: {pct(within, len(r))} "
               f"({sum(x < 0.5 for x in r)} under 0.5, {sum(x > 2 for x in r)} over 2)")
     labels = sorted(set(confusion) | {c for row in confusion.values() for c in row})

@@ -227,6 +227,30 @@ VectorXd project_residual(const VectorXd& r, const std::vector<VectorXd>& regres
   return e;
 }
 
+// The calibrated model's residual r = y - simulated: raw (the rows the projection keeps), projected
+// off the FIRs of project_residual, and the projected residual's RMS with the fitted parameters'
+// degrees of freedom removed. The noise is independent of the inputs, so E[upper^2] >= sigma^2:
+// an upper bound in expectation (noise plus what the model leaves unexplained).
+struct ResidualReading {
+  VectorXd raw, projected;
+  int parameters = 0;
+  double upper = 0;
+};
+
+ResidualReading read_residual(const VectorXd& r, const VectorXd& simulated, const Eigen::Ref<const Eigen::MatrixXd>& inputs) {
+  const Index N = r.size();
+  const int L = static_cast<int>(std::min<Index>(64, std::max<Index>(8, N / 200)));
+  const VectorXd s = simulated.array() - simulated.mean();
+  std::vector<VectorXd> regressors{simulated, s.array().square(), s.array().cube()};
+  for (Index j = 0; inputs.rows() == N && j < inputs.cols(); ++j) regressors.emplace_back(inputs.col(j));
+  ResidualReading out;
+  out.projected = project_residual(r, regressors, L, out.parameters);
+  out.raw = r.segment(L, N - 3 - L);
+  const double dof = static_cast<double>(out.projected.size() - out.parameters);
+  out.upper = dof > 0 ? std::sqrt(out.projected.squaredNorm() / dof) : std::sqrt(out.raw.squaredNorm() / static_cast<double>(out.raw.size()));
+  return out;
+}
+
 }  // namespace
 
 double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y) {
@@ -411,6 +435,16 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
       out.method = NoiseMethod::repeats;
       out.reason = "the inputs repeat with a lag of " + std::to_string(rep.lag) + " samples over " +
                    std::to_string(rep.matched) + " samples";
+      // An input that only nearly repeats (a sine whose period is no whole number of samples)
+      // leaves signal in the repeat difference: like the residual's RMS it is then the noise plus
+      // something independent of it, an upper bound in expectation; the lower of the two is kept.
+      if (have_model && N >= 64) {
+        const double upper = read_residual(y - simulated, simulated, inputs).upper;
+        if (out.sigma > upper) {
+          out.sigma = upper;
+          out.reason += "; capped by the model's projected residual RMS (the repeat difference holds more than noise)";
+        }
+      }
       return out;
     }
   }
@@ -421,23 +455,14 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
     out.method = have_model ? NoiseMethod::residual_floor : NoiseMethod::output_spectrum;
     out.reason = "plateau of the " + std::to_string(p.order) + "-th difference (" + std::to_string(N) + " samples: too few for a spectrum)";
   } else if (have_model) {
-    const int L = static_cast<int>(std::min<Index>(64, std::max<Index>(8, N / 200)));
-    const VectorXd s = simulated.array() - simulated.mean();
-    std::vector<VectorXd> regressors{simulated, s.array().square(), s.array().cube()};
-    for (Index j = 0; have_inputs && j < inputs.cols(); ++j) regressors.emplace_back(inputs.col(j));
-    int p = 0;
-    const VectorXd e = project_residual(r, regressors, L, p);
-    const VectorXd raw = r.segment(L, N - 3 - L);
-    const double dof = static_cast<double>(e.size() - p);
-    // The noise is independent of the inputs, so E[upper^2] >= sigma^2: an upper bound in
-    // expectation (noise plus what the model leaves unexplained).
-    const double upper = dof > 0 ? std::sqrt(e.squaredNorm() / dof) : std::sqrt(raw.squaredNorm() / static_cast<double>(raw.size()));
-    const SpectralReading sp = dof > p ? from_spectrum({raw, e}) : from_spectrum({raw});
+    const ResidualReading rr = read_residual(r, simulated, inputs);
+    const double dof = static_cast<double>(rr.projected.size() - rr.parameters);
+    const SpectralReading sp = dof > rr.parameters ? from_spectrum({rr.raw, rr.projected}) : from_spectrum({rr.raw});
     out.sigma = sp.sigma;
     out.method = sp.coloured ? NoiseMethod::residual_coloured : NoiseMethod::residual_floor;
     out.reason = "residual of the model: " + sp.reason;
-    if (out.sigma > upper) {
-      out.sigma = upper;
+    if (out.sigma > rr.upper) {
+      out.sigma = rr.upper;
       out.reason += "; capped by the projected residual's RMS";
     }
   } else {

@@ -110,6 +110,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   locate_mismatch(c, nominal, noise, d);                                        // 2.
   const HypothesisSearch search = search_hypotheses(c, nominal, noise, d);      // 3.
   augment(c, nominal, search, d);                                               // 4.
+  final_noise(c, d);                                                            // reported, not a rule's input
   d.final_tests = d.nominal_tests;
   if (!d.effects.empty()) {
     Simulator aug(d.augmented, est, {opt.final_substeps});

@@ -1,7 +1,9 @@
 // The noise level of every output (sets/data/noise_level.hpp) and the misfit the noise alone
 // gives (the diagnosis' noise floor). The noise of a channel is a property of the channel: it is
-// estimated on every record from the calibrated nominal's residual and the model's exogenous
-// inputs, and the value of the most reliable method is used for all records.
+// estimated on every record from a calibrated model's residual and the model's exogenous inputs,
+// and the value of the most reliable method is used for all records. The floor the rules use is
+// read from the calibrated nominal's residual (before any effect is named); the final estimate is
+// read again from the augmented model's, which no longer carries the effects it names.
 
 #include "diagnosis/stages.hpp"
 
@@ -19,32 +21,50 @@ Eigen::MatrixXd exogenous_inputs(const ModelFile& model, const Recording& r) {
   return U;
 }
 
+// The noise of every output read from one model's simulated outputs on the estimation record
+// and (when given, same columns) on the validation record.
+std::vector<OutputNoise> read_noise(const Context& c, const std::vector<std::string>& outputs, const Eigen::MatrixXd& simulated,
+                                    const Eigen::MatrixXd& simulated_validation, const std::string& model) {
+  const Eigen::MatrixXd& Y = c.exact.measured();
+  const Eigen::MatrixXd U = exogenous_inputs(c.model, c.estimation);
+  Eigen::MatrixXd Uv;
+  const bool validation = c.validation && c.exact_validation && simulated_validation.cols() == Y.cols() &&
+                          simulated_validation.rows() == c.exact_validation->measured().rows();
+  if (validation) Uv = exogenous_inputs(c.model, *c.validation);
+  std::vector<OutputNoise> out;
+  for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+    std::vector<NoiseLevelEstimate> e{estimate_noise(Y.col(j), simulated.col(j), U)};
+    if (validation) e.push_back(estimate_noise(c.exact_validation->measured().col(j), simulated_validation.col(j), Uv));
+    const std::size_t best = most_reliable(e);
+    out.push_back({outputs[static_cast<std::size_t>(j)], e[best], best == 0 ? "estimation" : "validation", model});
+  }
+  return out;
+}
+
 }  // namespace
 
 NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d) {
   c.say("estimating the noise level of every output");
   const Eigen::MatrixXd& Y = c.exact.measured();
-  const Eigen::MatrixXd U = exogenous_inputs(c.model, c.estimation);
-  Eigen::MatrixXd Uv;
-  if (c.validation) Uv = exogenous_inputs(c.model, *c.validation);
+  d.noise = read_noise(c, d.outputs, nominal.simulation.outputs, nominal.validation_outputs, "nominal");
   NoiseFloor f;
   const Eigen::Index N = Y.rows();
   for (Eigen::Index j = 0; j < Y.cols(); ++j) {
-    std::vector<NoiseLevelEstimate> e{estimate_noise(Y.col(j), nominal.simulation.outputs.col(j), U)};
-    if (c.validation && nominal.validation_outputs.cols() == Y.cols())
-      e.push_back(estimate_noise(c.exact_validation->measured().col(j), nominal.validation_outputs.col(j), Uv));
-    const std::size_t best = most_reliable(e);
-    OutputNoise on;
-    on.output = d.outputs[static_cast<std::size_t>(j)];
-    on.estimate = e[best];
-    on.record = best == 0 ? "estimation" : "validation";
-    d.noise.push_back(on);
-    const double s = on.estimate.sigma;
+    const double s = d.noise[static_cast<std::size_t>(j)].estimate.sigma;
     f.sigma.push_back(s);
     const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
     if (den > 0) f.cost += s * s * static_cast<double>(N) / den;
   }
   return f;
+}
+
+void final_noise(const Context& c, Diagnosis& d) {
+  if (d.effects.empty()) {
+    d.noise_final = d.noise;
+    return;
+  }
+  c.say("estimating the noise level again from the augmented model's residual");
+  d.noise_final = read_noise(c, d.outputs, d.augmented_estimation, d.augmented_validation, "augmented");
 }
 
 }  // namespace sets::diagnosis_stage

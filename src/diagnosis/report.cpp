@@ -83,12 +83,16 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
                        {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}});
   }
   j["effects"] = effects;
-  J noise = J::object();
-  for (const auto& n : d.noise)
-    noise[n.output] = {{"sigma", num(n.estimate.sigma)}, {"method", noise_method_name(n.estimate.method)},
-                       {"record", n.record}, {"reason", n.estimate.reason},
-                       {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)}};
-  j["noise_level"] = noise;
+  auto noise_levels = [](const std::vector<OutputNoise>& levels) {
+    J noise = J::object();
+    for (const auto& n : levels)
+      noise[n.output] = {{"sigma", num(n.estimate.sigma)}, {"method", noise_method_name(n.estimate.method)},
+                         {"record", n.record}, {"model", n.model}, {"reason", n.estimate.reason},
+                         {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)}};
+    return noise;
+  };
+  j["noise_level"] = noise_levels(d.noise);              // the calibrated nominal's: the rules' floor
+  j["noise_level_final"] = noise_levels(d.noise_final);  // the final model's: reported
   const DataHypothesis& h = d.data_hypothesis;
   j["data_hypothesis"] = {{"tested", h.tested}, {"found", h.found}, {"finding", h.finding}, {"note", h.note},
                           {"inputs", h.inputs}, {"declared", h.declared}, {"alternative", h.alternative},
@@ -162,10 +166,17 @@ std::string diagnosis_text(const Diagnosis& d) {
     }
     o << ")\n";
   }
-  o << "Noise level (estimated, one value per output channel):\n";
-  for (const auto& n : d.noise)
-    o << "  " << n.output << ": sigma = " << fmt(n.estimate.sigma) << " (" << noise_method_name(n.estimate.method) << ", "
-      << n.record << " record: " << n.estimate.reason << ")\n";
+  auto noise_lines = [&](const std::vector<OutputNoise>& levels) {
+    for (const auto& n : levels)
+      o << "  " << n.output << ": sigma = " << fmt(n.estimate.sigma) << " (" << noise_method_name(n.estimate.method) << ", "
+        << n.record << " record: " << n.estimate.reason << ")\n";
+  };
+  o << "Noise level (estimated, one value per output channel), from the calibrated nominal's residual (the rules' floor):\n";
+  noise_lines(d.noise);
+  if (!d.effects.empty()) {
+    o << "Noise level from the augmented model's residual (what the final model leaves as noise):\n";
+    noise_lines(d.noise_final);
+  }
   if (d.data_hypothesis.found) o << "About the data (not physics): " << d.data_hypothesis.finding << ".\n";
   o << "Nominal calibration: " << d.nominal_note << "\n";
   o << "Verdict: " << d.verdict << "\n";

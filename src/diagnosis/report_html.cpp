@@ -176,6 +176,25 @@ void mismatch_section(std::ostringstream& o, const J& j, const ModelFile& model)
   }
 }
 
+// The estimated noise level per output: from the calibrated nominal's residual (the floor the
+// rules use) and from the final model's (the augmented one when effects were named).
+void noise_section(std::ostringstream& o, const J& j, const std::vector<std::string>& outputs, const ModelFile& model) {
+  o << "<h2>Noise level (estimated)</h2>\n<table><tr><th class=\"l\">output</th><th class=\"l\">residual of</th>"
+       "<th>sigma</th><th class=\"l\">method</th><th class=\"l\">record</th><th class=\"l\">reason</th></tr>\n";
+  auto rows = [&](const J& levels, const char* label) {
+    for (const auto& y : outputs) {
+      if (!levels.contains(y)) continue;
+      const J& n = levels[y];
+      o << "<tr><td class=\"l\">" << escape(y) << "</td><td class=\"l\">" << label << "</td><td>" << num(n["sigma"], 3)
+        << unit_suffix(model.unit(y)) << "</td><td class=\"l\">" << escape(n["method"].get<std::string>()) << "</td><td class=\"l\">"
+        << escape(n["record"].get<std::string>()) << "</td><td class=\"l\">" << escape(n["reason"].get<std::string>()) << "</td></tr>\n";
+    }
+  };
+  rows(j["noise_level"], "calibrated nominal (the rules&#39; floor)");
+  if (!j["effects"].empty()) rows(j["noise_level_final"], "augmented model (final)");
+  o << "</table>\n<p class=\"note\">Estimates, not bounds (docs/methods/noise-level.md).</p>\n";
+}
+
 }  // namespace
 
 std::string diagnosis_html(const Diagnosis& d, const std::vector<ReportFigure>& figures,
@@ -199,6 +218,7 @@ std::string diagnosis_html(const Diagnosis& d, const std::vector<ReportFigure>& 
     o << "<tr><td class=\"l\">" << escape(it.key()) << "</td><td>" << num(it.value()) << unit_suffix(model.unit(it.key()))
       << "</td></tr>\n";
   o << "</table>\n";
+  noise_section(o, j, d.outputs, model);
   effects_section(o, j, model);
   mismatch_section(o, j, model);
   if (!figures.empty()) {

@@ -112,6 +112,10 @@ struct NoiseFloor {
 /// The noise level of every output from the calibrated nominal's residual (and the inputs'
 /// repeats), on every record, the most reliable method's value used for all; fills d.noise.
 NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d);
+/// The noise level read again from the final model's residual (after augment): a concealed effect
+/// left in the nominal's residual inflates the floor; once named and fitted, it no longer does.
+/// Fills d.noise_final (a copy of d.noise when no effect was named).
+void final_noise(const Context& c, Diagnosis& d);
 
 // ---- data_hypothesis.cpp
 /// Is the mismatch a property of the data rather than of the physics? The nominal structure

@@ -336,10 +336,10 @@ bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, c
   return true;
 }
 
-// The measured outputs: the truth simulated on each record plus the drawn noise; sigma: the true
-// noise standard deviation per output on the estimation record.
+// The measured outputs: the truth simulated on each record plus the drawn noise; sigma and
+// sigma_validation: the true noise standard deviation per output on each record.
 bool add_measured_outputs(Rng& r, const ModelFile& truth, const Build& b, const Noise& noise, Records& rec,
-                          std::vector<double>& sigma) {
+                          std::vector<double>& sigma, std::vector<double>& sigma_validation) {
   for (Recording* one : {&rec.est, &rec.val}) {
     Eigen::MatrixXd y;
     if (!simulate_outputs(truth, *one, y)) return false;
@@ -348,7 +348,7 @@ bool add_measured_outputs(Rng& r, const ModelFile& truth, const Build& b, const 
       const double sd = std::sqrt((yj.array() - yj.mean()).square().mean());
       const double s = std::max(noise.fraction[j] * sd, 1e-300);
       one->add(b.outputs[j].second, add_noise(r, yj, noise.kind[j], s));
-      if (one == &rec.est) sigma.push_back(s);
+      (one == &rec.est ? sigma : sigma_validation).push_back(s);
     }
   }
   return true;
@@ -425,7 +425,7 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     std::vector<double> detectability;
     if (!detectable(b, truth_of, truth, rec.est, noise, knobs, detectability)) continue;
     SyntheticPlant p;
-    if (!add_measured_outputs(r, truth, b, noise, rec, p.noise_sigma)) continue;
+    if (!add_measured_outputs(r, truth, b, noise, rec, p.noise_sigma, p.noise_sigma_validation)) continue;
     p.family = b.family;
     p.name = "random-" + std::to_string(seed);
     p.nominal = nominal_of(r, b, rec.time_col);

@@ -160,7 +160,8 @@ SyntheticPlant synthetic_plant(const std::string& name) {
   double sigma = 0;
   p.estimation = generate(truth, col, n, Ts, ulo, uhi, seed, h0, &sigma);
   p.noise_sigma = {sigma};
-  p.validation = generate(truth, col, n, Ts, ulo, uhi, seed + 1000, h0);
+  p.validation = generate(truth, col, n, Ts, ulo, uhi, seed + 1000, h0, &sigma);
+  p.noise_sigma_validation = {sigma};
   p.estimation.source = name + " (estimation)";
   p.validation.source = name + " (validation)";
   truth.name = "truth of synthetic plant " + name;

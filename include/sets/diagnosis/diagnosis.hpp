@@ -125,6 +125,7 @@ struct OutputNoise {
   std::string output;            // recording column
   NoiseLevelEstimate estimate;   // the value used (an estimate, not a bound)
   std::string record;            // "estimation" or "validation": where it came from
+  std::string model;             // "nominal" or "augmented": whose residual it was read from
 };
 
 /// A finding about the data, reported apart from missing physics: the same nominal structure
@@ -171,7 +172,11 @@ struct Diagnosis {
   int hypotheses_screened = 0, hypotheses_refined = 0;
   std::vector<double> error_bound;       // per output, used for windows and PUIs
   std::string bound_note;
-  std::vector<OutputNoise> noise;        // per output
+  std::vector<OutputNoise> noise;        // per output, from the calibrated nominal's residual: the
+                                         // floor the rules use (taken before augmentation)
+  std::vector<OutputNoise> noise_final;  // per output, from the final model's residual (the augmented
+                                         // one when effects were named, else the nominal's): what the
+                                         // final model leaves as noise; reported, not used by the rules
   DataHypothesis data_hypothesis;        // a finding about the data (not physics)
   // Signals for plots.
   Eigen::VectorXd time_estimation, time_validation;

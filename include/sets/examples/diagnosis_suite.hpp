@@ -36,7 +36,8 @@ struct SuitePlantResult {
   double fit_nominal = 0, fit_augmented = 0;  // validation fit of the first output, percent
   double seconds = 0;
   std::vector<SuiteCoverage> coverage;  // true values that map cleanly, of effects named at the true place
-  std::vector<double> noise_ratio;   // estimated / true noise sigma per output
+  std::vector<double> noise_ratio;          // estimated / true noise sigma per output: the final model's estimate
+  std::vector<double> noise_ratio_nominal;  // the same from the calibrated nominal's residual (the rules' floor)
   std::string error;                 // the diagnosis failed with this message
   bool first_right() const;          // the first named effect is the (first) true one, or none for clean
   bool all_named() const;            // every true effect is named

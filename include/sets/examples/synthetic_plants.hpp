@@ -37,6 +37,9 @@ struct SyntheticPlant {
   std::string family;       // random plants: the family drawn
   std::string description;  // random plants: sampling, excitation, noise, in one line
   std::vector<double> noise_sigma;  // true noise standard deviation per output (measurement units)
+  /// The same on the validation record: the generators draw the noise as a fraction of each
+  /// record's own signal spread, so it differs from the estimation record's.
+  std::vector<double> noise_sigma_validation;
 };
 
 /// Names of every plant in the suite (one per catalogue entry, then the clean plants).
