@@ -129,6 +129,11 @@ bool inside_bound(const Eigen::MatrixXd& R, const OutputErrorIntervals& oe) {
 // bounded-error set need not lie inside the linearised one; e.g. a threshold law or another basin),
 // nor is the statistical interval. So only the first cuts the declared [min, max]; the others
 // stay beside it as estimates.
+std::pair<double, double> declared_range(const ModelParameter& p) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {p.min <= -1e300 ? -inf : p.min, p.max >= 1e300 ? inf : p.max};
+}
+
 void set_bounded_error_interval(EffectParameter& ep, double min, double max) {
   ep.lo = min;
   ep.hi = max;
@@ -251,10 +256,7 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
         const auto ii = static_cast<Eigen::Index>(i);
         ep.estimate = r.parameters[fr[i]];
         // The parameter's own bounds (min/max) hold too, so every interval is cut to them.
-        // The model file writes "no bound" as +-1e300: an end there is unbounded (inf, printed as
-        // such and null in the JSON), not a number.
-        const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
-        const double min = mp.min <= -1e300 ? -inf : mp.min, max = mp.max >= 1e300 ? inf : mp.max;
+        const auto [min, max] = declared_range(current.parameters[static_cast<std::size_t>(fr[i])]);
         ep.estimate_oe_lo = std::max(have_pui ? oe.lo[i] : -inf, min);
         ep.estimate_oe_hi = std::min(have_pui ? oe.hi[i] : inf, max);
         const auto ee = ee_results.find(chosen_candidates[k].equation);

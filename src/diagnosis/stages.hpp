@@ -152,5 +152,8 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
 /// sets that hold under the stated error bound (the certified equation-error PUI); the linearised
 /// output-error PUI and the statistical interval are estimates and never cut it.
 void set_bounded_error_interval(EffectParameter& ep, double min, double max);
+/// A parameter's declared [min, max], "no bound" (+-1e300 in the model file) as +-inf: an interval
+/// end there is unbounded (printed as inf, null in the JSON), not the number 1e+300.
+std::pair<double, double> declared_range(const ModelParameter& p);
 
 }  // namespace sets::diagnosis_stage

@@ -77,6 +77,23 @@ TEST(Augment, OnlyTheCertifiedEquationErrorPuiCutsTheDeclaredRange) {
   EXPECT_EQ(ep.hi, 1.5);
 }
 
+// A model file writes "no bound" as +-1e300 (ModelParameter's defaults): the reported interval's
+// end there is unbounded, not the number 1e+300; declared bounds are kept as they are.
+TEST(Augment, AnUndeclaredBoundIsAnUnboundedIntervalEnd) {
+  ModelParameter free_both;
+  EXPECT_EQ(declared_range(free_both), std::make_pair(-inf_for_test(), inf_for_test()));
+  ModelParameter positive;
+  positive.min = 0.0;
+  EXPECT_EQ(declared_range(positive), std::make_pair(0.0, inf_for_test()));
+  ModelParameter box;
+  box.min = -2.5, box.max = 1e299;
+  EXPECT_EQ(declared_range(box), std::make_pair(-2.5, 1e299));
+  EffectParameter ep;
+  const auto [min, max] = declared_range(positive);
+  set_bounded_error_interval(ep, min, max);
+  EXPECT_EQ(ep.hi, inf_for_test()) << "printed as 1e+300 before d9520e3";
+}
+
 // On development plant 800 034 (asymmetric friction) the search's optimum lies in another basin:
 // the output-error PUI linearised there leaves out the true dFv, the equation-error PUI holds it
 // (docs/reproduction/diagnosis.md, fourth session). The reported interval holds it; the meet of
