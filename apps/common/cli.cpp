@@ -103,9 +103,13 @@ void Cli::check_numbers() {
   }
 }
 
-void Cli::check_outputs() const {
+void Cli::check_outputs() {
   for (const Output& o : outputs_) {
     if (o.path->empty()) continue;
+    // "report/" names the folder "report" (as the shell's completion writes it): without the
+    // separator, not a path with an empty file name whose staging folder would sit inside it.
+    if (o.folder)
+      while (o.path->size() > 1 && o.path->back() == fs::path::preferred_separator) o.path->pop_back();
     const fs::path target(*o.path);
     const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     const auto fail = [&](const std::string& why) {

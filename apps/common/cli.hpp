@@ -48,7 +48,7 @@ class Cli {
     std::string owned;
   };
   void check_numbers();
-  void check_outputs() const;
+  void check_outputs();  // also drops a folder path's trailing separators
 
   std::string name_;
   CLI::App app_;

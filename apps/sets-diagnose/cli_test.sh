@@ -54,6 +54,9 @@ check "report" 0 "Augmented model written to" -- "$app" --example --quiet --repo
 check_listing "report folder" "$dir/k/report" augmented_model.json index.html report.txt signals_estimation.png \
   signals_validation.png signature.png
 check_listing "beside the report: only the JSON" "$dir/k" d.json report
+# The folder written with a trailing separator (README's command: --report report/) is the same folder.
+check "report/ with a trailing separator" 0 "Augmented model written to" -- "$app" --example --quiet --report "$dir/k/report/"
+check_listing "report/: the same folder, replaced" "$dir/k" d.json report
 
 # Killed while writing the report: SIGTERM leaves neither a partial report nor a temporary; after
 # SIGKILL, the next run removes the stale temporary.
