@@ -251,9 +251,12 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
         const auto ii = static_cast<Eigen::Index>(i);
         ep.estimate = r.parameters[fr[i]];
         // The parameter's own bounds (min/max) hold too, so every interval is cut to them.
+        // The model file writes "no bound" as +-1e300: an end there is unbounded (inf, printed as
+        // such and null in the JSON), not a number.
         const auto& mp = current.parameters[static_cast<std::size_t>(fr[i])];
-        ep.estimate_oe_lo = std::max(have_pui ? oe.lo[i] : -inf, mp.min);
-        ep.estimate_oe_hi = std::min(have_pui ? oe.hi[i] : inf, mp.max);
+        const double min = mp.min <= -1e300 ? -inf : mp.min, max = mp.max >= 1e300 ? inf : mp.max;
+        ep.estimate_oe_lo = std::max(have_pui ? oe.lo[i] : -inf, min);
+        ep.estimate_oe_hi = std::min(have_pui ? oe.hi[i] : inf, max);
         const auto ee = ee_results.find(chosen_candidates[k].equation);
         if (ee != ee_results.end() && ee->second.built)
           for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
@@ -261,10 +264,10 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
               ep.has_ee = true;
               ep.ee_certified = ee->second.guaranteed;
               ep.ee_delta = ee->second.delta;
-              ep.ee_lo = std::max(ee->second.box[c].lower(), mp.min);
-              ep.ee_hi = std::min(ee->second.box[c].upper(), mp.max);
+              ep.ee_lo = std::max(ee->second.box[c].lower(), min);
+              ep.ee_hi = std::min(ee->second.box[c].upper(), max);
             }
-        set_bounded_error_interval(ep, mp.min, mp.max);
+        set_bounded_error_interval(ep, min, max);
         if (ep.has_ee && (ep.estimate_oe_hi < ep.ee_lo || ep.ee_hi < ep.estimate_oe_lo))
           d.bound_note += "; the linearised output-error estimate of " + pn + " lies outside its equation-error PUI";
         const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));

@@ -2,7 +2,6 @@
 // that a stalled calibration is never blamed on missing physics), the noise level.
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <exception>
 #include <sstream>
@@ -139,23 +138,14 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   // shared between threads); notes and choice in start order, so the result is the serial one.
   std::vector<CalibrationResult> results(starts.size());
   std::vector<std::ostringstream> notes(starts.size());
-  std::vector<std::exception_ptr> errors(starts.size());
-  std::atomic<std::size_t> next{0};
-  run_worker_threads(c.options.threads, [&] {
-    for (std::size_t i; (i = next++) < starts.size();) {
-      try {
-        const Simulator fast(c.model, c.estimation, {c.options.screening_substeps});
-        const Simulator exact(c.model, c.estimation, {c.options.final_substeps});
-        const Context own{c.model, c.estimation, c.validation, c.options, exact, fast, c.exact_validation, c.say};
-        results[i] = calibrate_from(own, starts[i].second, at_file, n.free, copt, notes[i]);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
+  run_jobs(c.options.threads, starts.size(), [&](std::size_t i) {
+    const Simulator fast(c.model, c.estimation, {c.options.screening_substeps});
+    const Simulator exact(c.model, c.estimation, {c.options.final_substeps});
+    const Context own{c.model, c.estimation, c.validation, c.options, exact, fast, c.exact_validation, c.say};
+    results[i] = calibrate_from(own, starts[i].second, at_file, n.free, copt, notes[i]);
   });
   double best_cost = 1e300, worst_cost = 0;
   for (std::size_t i = 0; i < starts.size(); ++i) {
-    if (errors[i]) std::rethrow_exception(errors[i]);
     note << " " << starts[i].first << " -> " << notes[i].str();
     const CalibrationResult& r = results[i];
     if (!r.ok) continue;

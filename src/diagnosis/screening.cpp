@@ -3,9 +3,9 @@
 #include <Eigen/QR>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <mutex>
 
 #include "sets/data/simulation.hpp"
@@ -89,13 +89,13 @@ Eigen::VectorXd sensitivity(const Simulator& s, const Eigen::VectorXd& p, int i,
   return Eigen::VectorXd();
 }
 
-ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Candidate& c, const ScreeningOptions& o,
-                              int& sims) {
-  ScreenedHypothesis h;
-  h.candidate = c;
-  h.new_parameters = static_cast<int>(c.parameters.size()) + (c.effect == "time_delay" ? 1 : 0);
-  h.cost = std::numeric_limits<double>::infinity();
-  Simulator s(c.model, data, {o.substeps});
+// Where a candidate's parameters sit in its simulator: the current model's free parameters that
+// stay free in the candidate (a replaced one does not; their columns of a.J) and its new ones.
+struct CandidateLayout {
+  std::vector<int> cur_cols, cur_index, new_index;
+};
+
+CandidateLayout layout_of(const Around& a, const Candidate& c, const Simulator& s) {
   const std::vector<std::string> names = s.parameter_names();
   const std::vector<int> free = s.free_parameters();
   auto index_of = [&](const std::string& n) {
@@ -103,93 +103,136 @@ ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Cand
       if (names[i] == n) return static_cast<int>(i);
     return -1;
   };
-  // Current free parameters still free in the candidate (a replaced one is not).
-  std::vector<int> cur_cols, cur_index;
+  CandidateLayout L;
   for (std::size_t k = 0; k < a.free_names.size(); ++k) {
     const int i = index_of(a.free_names[k]);
-    if (i >= 0 && std::find(free.begin(), free.end(), i) != free.end()) cur_cols.push_back(static_cast<int>(k)), cur_index.push_back(i);
+    if (i >= 0 && std::find(free.begin(), free.end(), i) != free.end())
+      L.cur_cols.push_back(static_cast<int>(k)), L.cur_index.push_back(i);
   }
-  std::vector<int> new_index;
-  for (const auto& n : c.parameters) new_index.push_back(index_of(n));
+  for (const auto& n : c.parameters) L.new_index.push_back(index_of(n));
+  return L;
+}
+
+// The linearised least-squares fit at one grid point of the nonlinear parameters: the shift d of
+// the outputs the grid point alone gives, the sensitivity columns A (current parameters, then
+// the new ones) and the cost of the bounded step x.
+struct GridFit {
+  double cost;
+  Eigen::VectorXd start, stepped;  // linear coefficients fitted (nonlinear on the grid); all stepped
+  Eigen::VectorXd d;
+  Eigen::MatrixXd A;
+};
+
+std::optional<GridFit> fit_grid_point(const Around& a, const Candidate& c, const CandidateLayout& L, Simulator& s,
+                                      const Eigen::VectorXd& base, const Eigen::VectorXd& R, const std::vector<double>& g,
+                                      int& sims) {
+  const std::vector<int>& ni = L.new_index;
+  Eigen::VectorXd p = base;
+  std::size_t gi = 0;
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    if (c.linear[k]) p[ni[k]] = 0.0;
+    else if (gi < g.size()) p[ni[k]] = g[gi++];
+  }
+  const bool has_linear = std::find(c.linear.begin(), c.linear.end(), true) != c.linear.end();
+  Eigen::MatrixXd yg = a.y0;
+  if (!c.grid.empty() || !has_linear) {
+    ++sims;
+    if (!s.simulate_outputs(p, yg) || !yg.allFinite()) return std::nullopt;
+  }
+  const Eigen::VectorXd d = weighted(yg - a.y0, a.w);
+  const auto q0 = static_cast<Eigen::Index>(L.cur_cols.size());
+  const auto q = q0 + static_cast<Eigen::Index>(c.parameters.size());
+  Eigen::MatrixXd A(R.size(), q);
+  Eigen::VectorXd lo = Eigen::VectorXd::Constant(q, -1e300), hi = Eigen::VectorXd::Constant(q, 1e300);
+  for (Eigen::Index k = 0; k < q0; ++k) A.col(k) = a.J.col(L.cur_cols[static_cast<std::size_t>(k)]);
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const Eigen::Index col = q0 + static_cast<Eigen::Index>(k);
+    const double scale = c.scales[k] > 0 ? c.scales[k] : 1.0;
+    const double step = c.linear[k] ? 1e-3 * scale : 1e-2 * std::max(std::abs(p[ni[k]]), 1e-3 * scale);
+    const Eigen::VectorXd sk = sensitivity(s, p, ni[k], step, yg, a.w, sims);
+    if (sk.size() == 0) return std::nullopt;
+    A.col(col) = sk;
+    const auto& mp = c.model.parameters[static_cast<std::size_t>(ni[k])];
+    lo[col] = mp.min - p[ni[k]];
+    hi[col] = mp.max - p[ni[k]];
+  }
+  const Eigen::VectorXd x = bounded_least_squares(A, R - d, lo, hi);
+  GridFit fit{(R - d - A * x).squaredNorm(), p, p, d, A};
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const double v = p[ni[k]] + x[q0 + static_cast<Eigen::Index>(k)];
+    if (c.linear[k]) fit.start[ni[k]] = v;  // the nonlinear ones stay on their grid point
+    fit.stepped[ni[k]] = v;
+  }
+  for (std::size_t k = 0; k < L.cur_cols.size(); ++k) {
+    const auto& mp = c.model.parameters[static_cast<std::size_t>(L.cur_index[k])];
+    fit.stepped[L.cur_index[k]] = std::clamp(base[L.cur_index[k]] + x[static_cast<Eigen::Index>(k)], mp.min, mp.max);
+  }
+  return fit;
+}
+
+// The best grid point's linearisation in the new parameters: columns, shift and the bounds of
+// the step from the point the columns were taken at.
+void keep_linearisation(const Candidate& c, const CandidateLayout& L, const GridFit& b, ScreenedHypothesis& h) {
+  const auto qn = static_cast<Eigen::Index>(c.parameters.size());
+  h.columns = b.A.rightCols(qn);
+  h.shift = b.d;
+  h.lower.resize(qn);
+  h.upper.resize(qn);
+  for (Eigen::Index k = 0; k < qn; ++k) {
+    const int i = L.new_index[static_cast<std::size_t>(k)];
+    const auto& mp = c.model.parameters[static_cast<std::size_t>(i)];
+    const double at = c.linear[static_cast<std::size_t>(k)] ? 0.0 : b.start[i];
+    h.lower[k] = mp.min - at;
+    h.upper[k] = mp.max - at;
+  }
+}
+
+// Consistency with the noise bound: a common point of the linearised strips (decimated).
+bool consistent_with_noise(const Around& a, const ScreeningOptions& o, const Eigen::VectorXd& R, const GridFit& b) {
+  const Eigen::Index N = a.Y.rows(), ny = a.Y.cols(), stride = std::max<Eigen::Index>(1, N / 800);
+  const Eigen::Index m = (N + stride - 1) / stride;
+  Eigen::MatrixXd Phi(m * ny, b.A.cols());
+  Eigen::VectorXd yy(m * ny), dd(m * ny);
+  for (Eigen::Index j = 0; j < ny; ++j)
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const Eigen::Index t = j * N + i * stride;
+      // In units of the bound (the weights cancel): |r - d - A x| / (w delta) <= 1.
+      const double scale = a.w[j] * std::max(o.noise_bound[static_cast<std::size_t>(j)], 1e-300);
+      Phi.row(j * m + i) = b.A.row(t) / scale;
+      yy[j * m + i] = (R[t] - b.d[t]) / scale;
+      dd[j * m + i] = 1.0;
+    }
+  for (Eigen::Index col = 0; col < Phi.cols(); ++col) {
+    const double n = Phi.col(col).norm();
+    if (n > 0) Phi.col(col) /= n;
+  }
+  try {
+    return find_conflict(FeasibleParameterSet::from_data(Phi, yy, dd)).samples.empty();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Candidate& c, const ScreeningOptions& o,
+                              int& sims) {
+  ScreenedHypothesis h;
+  h.candidate = c;
+  h.new_parameters = static_cast<int>(c.parameters.size()) + (c.effect == "time_delay" ? 1 : 0);
+  h.cost = std::numeric_limits<double>::infinity();
+  Simulator s(c.model, data, {o.substeps});
+  const CandidateLayout L = layout_of(a, c, s);
   const Eigen::VectorXd base = s.parameter_values();
-  bool has_linear = false;
-  for (bool l : c.linear) has_linear = has_linear || l;
-  const std::vector<std::vector<double>> rows = c.grid.empty() ? std::vector<std::vector<double>>{{}} : c.grid;
-  struct Row {
-    double cost;
-    Eigen::VectorXd start, stepped;
-    Eigen::VectorXd d, x;
-    Eigen::MatrixXd A;
-  };
-  std::vector<Row> done;
   const Eigen::VectorXd R = weighted(a.Y - a.y0, a.w);
-  for (const auto& g : rows) {
-    Eigen::VectorXd p = base;
-    std::size_t gi = 0;
-    for (std::size_t k = 0; k < c.parameters.size(); ++k) {
-      if (c.linear[k]) p[new_index[k]] = 0.0;
-      else if (gi < g.size()) p[new_index[k]] = g[gi++];
-    }
-    Eigen::MatrixXd yg = a.y0;
-    if (!c.grid.empty() || !has_linear) {
-      ++sims;
-      if (!s.simulate_outputs(p, yg) || !yg.allFinite()) continue;
-    }
-    const Eigen::VectorXd d = weighted(yg - a.y0, a.w);
-    const auto q = static_cast<Eigen::Index>(cur_cols.size() + c.parameters.size());
-    Eigen::MatrixXd A(R.size(), q);
-    Eigen::VectorXd lo = Eigen::VectorXd::Constant(q, -1e300), hi = Eigen::VectorXd::Constant(q, 1e300);
-    for (std::size_t k = 0; k < cur_cols.size(); ++k) A.col(static_cast<Eigen::Index>(k)) = a.J.col(cur_cols[k]);
-    bool usable = true;
-    for (std::size_t k = 0; k < c.parameters.size(); ++k) {
-      const auto col = static_cast<Eigen::Index>(cur_cols.size() + k);
-      const double scale = c.scales[k] > 0 ? c.scales[k] : 1.0;
-      const double step = c.linear[k] ? 1e-3 * scale : 1e-2 * std::max(std::abs(p[new_index[k]]), 1e-3 * scale);
-      const Eigen::VectorXd sk = sensitivity(s, p, new_index[k], step, yg, a.w, sims);
-      if (sk.size() == 0) {
-        usable = false;
-        break;
-      }
-      A.col(col) = sk;
-      const auto& mp = c.model.parameters[static_cast<std::size_t>(new_index[k])];
-      lo[col] = mp.min - p[new_index[k]];
-      hi[col] = mp.max - p[new_index[k]];
-    }
-    if (!usable) continue;
-    const Eigen::VectorXd x = bounded_least_squares(A, R - d, lo, hi);
-    Row row{(R - d - A * x).squaredNorm(), p, p, d, x, A};
-    for (std::size_t k = 0; k < c.parameters.size(); ++k) {
-      const double v = p[new_index[k]] + x[static_cast<Eigen::Index>(cur_cols.size() + k)];
-      if (c.linear[k]) row.start[new_index[k]] = v;  // the nonlinear ones stay on their grid point
-      row.stepped[new_index[k]] = v;
-    }
-    for (std::size_t k = 0; k < cur_cols.size(); ++k) {
-      const auto& mp = c.model.parameters[static_cast<std::size_t>(cur_index[k])];
-      row.stepped[cur_index[k]] = std::clamp(base[cur_index[k]] + x[static_cast<Eigen::Index>(k)], mp.min, mp.max);
-    }
-    done.push_back(std::move(row));
-  }
+  std::vector<GridFit> done;
+  for (const auto& g : c.grid.empty() ? std::vector<std::vector<double>>{{}} : c.grid)
+    if (auto fit = fit_grid_point(a, c, L, s, base, R, g, sims)) done.push_back(std::move(*fit));
   if (done.empty()) {
     h.note = "could not be simulated";
     return h;
   }
-  std::sort(done.begin(), done.end(), [](const Row& x, const Row& y) { return x.cost < y.cost; });
+  std::sort(done.begin(), done.end(), [](const GridFit& x, const GridFit& y) { return x.cost < y.cost; });
   h.cost = done.front().cost;
-  {
-    const Row& b = done.front();
-    const auto q0 = static_cast<Eigen::Index>(cur_cols.size()), qn = static_cast<Eigen::Index>(c.parameters.size());
-    h.columns = b.A.rightCols(qn);
-    h.shift = b.d;
-    h.lower.resize(qn);
-    h.upper.resize(qn);
-    for (Eigen::Index k = 0; k < qn; ++k) {
-      const auto& mp = c.model.parameters[static_cast<std::size_t>(new_index[static_cast<std::size_t>(k)])];
-      const double at = c.linear[static_cast<std::size_t>(k)] ? 0.0 : b.start[new_index[static_cast<std::size_t>(k)]];
-      h.lower[k] = mp.min - at;
-      h.upper[k] = mp.max - at;
-    }
-    (void)q0;
-  }
+  keep_linearisation(c, L, done.front(), h);
   // Multi-start in the nonlinear parameters: the best three grid points, each with its
   // least-squares linear coefficients and (for the best) the full least-squares step.
   for (std::size_t r = 0; r < std::min<std::size_t>(3, done.size()); ++r) {
@@ -197,32 +240,7 @@ ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Cand
     if (r == 0) h.starts.push_back(done[r].stepped);
   }
   for (std::size_t i = 0; i < h.candidate.model.parameters.size(); ++i) h.candidate.model.parameters[i].value = h.starts.front()[static_cast<Eigen::Index>(i)];
-  // Consistency with the noise bound: a common point of the linearised strips (decimated).
-  if (!o.noise_bound.empty()) {
-    const Row& b = done.front();
-    const Eigen::Index N = a.Y.rows(), ny = a.Y.cols(), stride = std::max<Eigen::Index>(1, N / 800);
-    const Eigen::Index m = (N + stride - 1) / stride;
-    Eigen::MatrixXd Phi(m * ny, b.A.cols());
-    Eigen::VectorXd yy(m * ny), dd(m * ny);
-    for (Eigen::Index j = 0; j < ny; ++j)
-      for (Eigen::Index i = 0; i < m; ++i) {
-        const Eigen::Index t = j * N + i * stride;
-        // In units of the bound (the weights cancel): |r - d - A x| / (w delta) <= 1.
-        const double scale = a.w[j] * std::max(o.noise_bound[static_cast<std::size_t>(j)], 1e-300);
-        Phi.row(j * m + i) = b.A.row(t) / scale;
-        yy[j * m + i] = (R[t] - b.d[t]) / scale;
-        dd[j * m + i] = 1.0;
-      }
-    for (Eigen::Index col = 0; col < Phi.cols(); ++col) {
-      const double n = Phi.col(col).norm();
-      if (n > 0) Phi.col(col) /= n;
-    }
-    try {
-      h.consistent = find_conflict(FeasibleParameterSet::from_data(Phi, yy, dd)).samples.empty();
-    } catch (const std::exception&) {
-      h.consistent = false;
-    }
-  }
+  if (!o.noise_bound.empty()) h.consistent = consistent_with_noise(a, o, R, done.front());
   return h;
 }
 
@@ -304,6 +322,28 @@ std::vector<ScreenedHypothesis> screen_pairs(const Around& a, const Eigen::Vecto
   return out;
 }
 
+// The equation-error fit of a candidate: its gain over the current model's (baseline: that
+// model's relative residual) and its estimates as another start, the nonlinear parameters from
+// the best grid point. A fit that cannot be built adds nothing.
+void add_equation_error_start(const Candidate& c, const Recording& data, const ColumnNoise& column_noise, double baseline,
+                              ScreenedHypothesis& h) {
+  try {
+    const EquationErrorFit f = equation_error_fit(c.model, data, c.equation, 0, column_noise);
+    if (!f.built) return;
+    h.ee_gain = 1 - (f.relative_residual * f.relative_residual) / (baseline * baseline);
+    if (h.starts.empty()) return;
+    Eigen::VectorXd st = h.starts.front();
+    for (std::size_t k = 0; k < f.parameters.size(); ++k)
+      for (std::size_t q = 0; q < c.model.parameters.size(); ++q)
+        if (c.model.parameters[q].name == f.parameters[k]) {
+          const auto& mp = c.model.parameters[q];
+          st[static_cast<Eigen::Index>(q)] = std::clamp(f.estimate[k], mp.min, mp.max);
+        }
+    h.starts.push_back(st);
+  } catch (const std::exception&) {
+  }
+}
+
 }  // namespace
 
 Screening screen_hypotheses(const ModelFile& current, const Recording& data, const std::vector<Candidate>& candidates,
@@ -353,44 +393,21 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   auto work = [&](std::size_t i) { return std::max<std::size_t>(1, candidates[i].grid.size()) * (1 + candidates[i].parameters.size()); };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return work(x) > work(y); });
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> sims{0};
-  run_worker_threads(o.threads, [&] {
-    int my = 0;
-    for (std::size_t j; (j = next++) < candidates.size();) {
-      const std::size_t i = order[j];
-      try {
-        hs[i] = screen_one(a, data, candidates[i], o, my);
-      } catch (const std::exception& e) {
-        hs[i].candidate = candidates[i];
-        hs[i].cost = std::numeric_limits<double>::infinity();
-        hs[i].note = e.what();
-      }
-      const auto it = ee_base.find(candidates[i].equation);
-      if (it != ee_base.end() && it->second > 0 && candidates[i].effect != "time_delay") {
-        try {
-          const EquationErrorFit f = equation_error_fit(candidates[i].model, data, candidates[i].equation, 0, column_noise);
-          if (f.built) {
-            hs[i].ee_gain = 1 - (f.relative_residual * f.relative_residual) / (it->second * it->second);
-            // Its estimates as another start (the nonlinear parameters from the best grid point).
-            if (!hs[i].starts.empty()) {
-              Eigen::VectorXd st = hs[i].starts.front();
-              for (std::size_t k = 0; k < f.parameters.size(); ++k)
-                for (std::size_t q = 0; q < candidates[i].model.parameters.size(); ++q)
-                  if (candidates[i].model.parameters[q].name == f.parameters[k]) {
-                    const auto& mp = candidates[i].model.parameters[q];
-                    st[static_cast<Eigen::Index>(q)] = std::clamp(f.estimate[k], mp.min, mp.max);
-                  }
-              hs[i].starts.push_back(st);
-            }
-          }
-        } catch (const std::exception&) {
-        }
-      }
+  std::vector<int> sims(candidates.size(), 0);
+  run_jobs(o.threads, candidates.size(), [&](std::size_t j) {
+    const std::size_t i = order[j];
+    try {
+      hs[i] = screen_one(a, data, candidates[i], o, sims[i]);
+    } catch (const std::exception& e) {
+      hs[i].candidate = candidates[i];
+      hs[i].cost = std::numeric_limits<double>::infinity();
+      hs[i].note = e.what();
     }
-    sims += my;
+    const auto it = ee_base.find(candidates[i].equation);
+    if (it != ee_base.end() && it->second > 0 && candidates[i].effect != "time_delay")
+      add_equation_error_start(candidates[i], data, column_noise, it->second, hs[i]);
   });
-  out.simulations += sims;
+  for (int n : sims) out.simulations += n;
   for (auto& h : hs) {
     h.gain = out.baseline > 0 ? 1 - h.cost / out.baseline : 0;
     h.score = h.cost * std::pow(o.sparsity_tolerance, h.new_parameters);
