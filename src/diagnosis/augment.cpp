@@ -122,6 +122,150 @@ bool inside_bound(const Eigen::MatrixXd& R, const OutputErrorIntervals& oe) {
   return true;
 }
 
+// The global step's optima (the search's own first); the estimate is the best of them.
+struct GlobalStep {
+  std::vector<CalibrationResult> optima;
+  std::size_t best = 0;
+  const CalibrationResult& estimate() const { return optima[best]; }
+};
+
+GlobalStep global_step(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
+                       const std::vector<int>& fr, const CalibrationOptions& o, Diagnosis& d) {
+  GlobalStep g;
+  for (auto& r : optima_of(c, current, chosen, fr, o))
+    if (g.optima.empty() || (r.ok && std::isfinite(r.cost) && r.outputs.allFinite())) g.optima.push_back(std::move(r));
+  const CalibrationResult& from_search = g.optima.front();
+  if (!from_search.ok) throw NumericalError("the augmented model blows up with the full substeps");
+  for (std::size_t k = 1; k < g.optima.size(); ++k)
+    if (g.optima[k].cost < g.optima[g.best].cost) g.best = k;
+  if (g.best != 0)
+    d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " +
+                    fmt(g.estimate().cost) + " against " + fmt(from_search.cost) + " from the search's optimum)";
+  return g;
+}
+
+// The augmented model (values refined) and its fits on both records.
+void store_augmented(const Context& c, const ModelFile& current, const CalibrationResult& r, Diagnosis& d) {
+  d.augmented = current;
+  d.fit_augmented_estimation = r.fit;
+  d.augmented_estimation = r.outputs;
+  if (!c.validation) return;
+  Simulator av(current, *c.validation, {c.options.final_substeps});
+  d.augmented_validation = av.simulate(r.parameters).outputs;
+  d.fit_augmented_validation = fits(av.measured(), d.augmented_validation);
+}
+
+// The output-error PUIs linearised at the estimate. Another optimum whose residual stays inside
+// the same bound is a point of the same bounded-error set, in another component of it: the
+// intervals are the hull of the linearised components around every such point (else they would
+// leave out a parameter value the bound admits). Says in d.bound_note what they rest on.
+OutputErrorIntervals output_error_hull(const Context& c, const ModelFile& current, const std::vector<int>& fr,
+                                       const CalibrationOptions& o, const GlobalStep& step, const Eigen::MatrixXd& J,
+                                       const Eigen::MatrixXd& Ra, Diagnosis& d) {
+  const CalibrationResult& r = step.estimate();
+  OutputErrorIntervals oe = output_error_intervals(J, Ra, r.parameters, fr, o.scale);
+  int components = 1;
+  for (std::size_t k = 0; oe.built && k < step.optima.size(); ++k) {
+    const CalibrationResult& other = step.optima[k];
+    if (k == step.best || (other.parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
+    const Eigen::MatrixXd Rk = c.exact.measured() - other.outputs;
+    if (!inside_bound(Rk, oe)) continue;
+    try {
+      const Eigen::MatrixXd Jk = output_jacobian(current, c.estimation, c.options.final_substeps, c.options.threads,
+                                                 other.parameters, fr, o.scale, other.outputs);
+      const OutputErrorIntervals ok = output_error_intervals(Jk, Rk, other.parameters, fr, o.scale, &oe.delta);
+      if (!ok.built) continue;
+      for (std::size_t i = 0; i < fr.size(); ++i) oe.lo[i] = std::min(oe.lo[i], ok.lo[i]), oe.hi[i] = std::max(oe.hi[i], ok.hi[i]);
+      oe.guaranteed = oe.guaranteed && ok.guaranteed;
+      ++components;
+    } catch (const std::exception&) {
+      // its sensitivities blow up: that component is not added (the note counts the ones that were)
+    }
+  }
+  d.bound_note +=
+      "; output-error PUIs (estimates: linearised at the estimate, they never cut the bounded-error interval): strips every " +
+      std::to_string(oe.stride) + "th sample, bound per output = 1.5 x the largest |residual| of the augmented model there";
+  if (!oe.built) d.bound_note += "; " + oe.note;
+  if (components > 1)
+    d.bound_note += "; " + std::to_string(components) +
+                    " optima of the global step inside the bound: the PUIs are the hull of their linearised components";
+  if (oe.built) d.bound_note += oe.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
+  return oe;
+}
+
+// The covariance of the statistical intervals: the strips' samples, each output normalised, with
+// white-noise variance from the residual.
+Eigen::MatrixXd statistical_covariance(const Eigen::MatrixXd& J, const Eigen::MatrixXd& Ra, Eigen::Index stride,
+                                       const std::vector<double>& norm) {
+  const Eigen::Index N = Ra.rows(), ny = Ra.cols(), m = (N + stride - 1) / stride;
+  Eigen::MatrixXd Jw(m * ny, J.cols());
+  Eigen::VectorXd rw(m * ny);
+  for (Eigen::Index j = 0; j < ny; ++j)
+    for (Eigen::Index i = 0; i < m; ++i) {
+      Jw.row(j * m + i) = J.row(j * N + i * stride) / norm[static_cast<std::size_t>(j)];
+      rw[j * m + i] = Ra(i * stride, j) / norm[static_cast<std::size_t>(j)];
+    }
+  const double dof = std::max<double>(1.0, static_cast<double>(rw.size() - Jw.cols()));
+  const double s2 = rw.squaredNorm() / dof;
+  return (Jw.transpose() * Jw).completeOrthogonalDecomposition().pseudoInverse() * s2;
+}
+
+// Equation-error PUIs where the effect's equation allows them (linear parameters, measured or
+// differentiable states): much less sensitive to what the model leaves out at high frequency.
+std::map<std::string, EquationErrorResult> equation_error_puis(const ModelFile& current, const Recording& est,
+                                                               const std::vector<Candidate>& chosen, Diagnosis& d) {
+  std::map<std::string, EquationErrorResult> ee;
+  for (const auto& c : chosen) {
+    if (ee.count(c.equation)) continue;
+    try {
+      ee[c.equation] = equation_error_pui(current, est, c.equation);
+    } catch (const std::exception& e) {
+      ee[c.equation].note = std::string("equation-error PUI failed: ") + e.what();
+    }
+    d.bound_note += "; " + ee[c.equation].note;
+  }
+  return ee;
+}
+
+// Parameter q of a chosen effect: its estimate, the bounded-error interval and the estimates
+// beside it (linearised output error, statistical).
+EffectParameter effect_parameter(const Candidate& effect, std::size_t q, const ModelFile& current, const std::vector<int>& fr,
+                                 const CalibrationResult& r, const OutputErrorIntervals& oe,
+                                 const std::map<std::string, EquationErrorResult>& ee_results, const Eigen::MatrixXd& cov,
+                                 Diagnosis& d) {
+  const std::string& pn = effect.parameters[q];
+  EffectParameter ep;
+  ep.name = pn;
+  ep.role = effect.roles[q];
+  ep.oe_delta = oe.delta;
+  for (std::size_t i = 0; i < fr.size(); ++i) {
+    if (current.parameters[static_cast<std::size_t>(fr[i])].name != pn) continue;
+    const auto ii = static_cast<Eigen::Index>(i);
+    ep.estimate = r.parameters[fr[i]];
+    // The parameter's own bounds (min/max) hold too, so every interval is cut to them.
+    const auto [min, max] = declared_range(current.parameters[static_cast<std::size_t>(fr[i])]);
+    ep.estimate_oe_lo = std::max(oe.built ? oe.lo[i] : -inf, min);
+    ep.estimate_oe_hi = std::min(oe.built ? oe.hi[i] : inf, max);
+    const auto ee = ee_results.find(effect.equation);
+    if (ee != ee_results.end() && ee->second.built)
+      for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
+        if (ee->second.parameters[static_cast<std::size_t>(c)] == pn) {
+          ep.has_ee = true;
+          ep.ee_certified = ee->second.guaranteed;
+          ep.ee_delta = ee->second.delta;
+          ep.ee_lo = std::max(ee->second.box[c].lower(), min);
+          ep.ee_hi = std::min(ee->second.box[c].upper(), max);
+        }
+    set_bounded_error_interval(ep, min, max);
+    if (ep.has_ee && (ep.estimate_oe_hi < ep.ee_lo || ep.ee_hi < ep.estimate_oe_lo))
+      d.bound_note += "; the linearised output-error estimate of " + pn + " lies outside its equation-error PUI";
+    const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
+    ep.estimate_stat_lo = ep.estimate - 1.96 * sd;
+    ep.estimate_stat_hi = ep.estimate + 1.96 * sd;
+  }
+  return ep;
+}
+
 }  // namespace
 
 // A meet is guaranteed only if every set met is: the equation-error PUI is (under its bound, every
@@ -151,134 +295,27 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
     d.augmented_validation = nominal.validation_outputs;
     return;
   }
-  ModelFile refined = search.current;  // its values refined with the final substeps below
-  const ModelFile& current = refined;
-  const auto& chosen_candidates = search.chosen;
-  const Recording& est = c.estimation;
-  const Recording* val = c.validation;
-  const DiagnosisOptions& opt = c.options;
-  const Eigen::MatrixXd& Y = c.exact.measured();
-  const Eigen::Index N = Y.rows(), ny = Y.cols();
-  const std::vector<double> norm = output_norms(Y);
   c.say("refining the augmented model and computing parameter uncertainty intervals");
-  Simulator aug(current, est, {opt.final_substeps});
-  const std::vector<int> fr = aug.free_parameters();
+  ModelFile current = search.current;  // its values refined with the final substeps here
+  const std::vector<int> fr = Simulator(current, c.estimation, {c.options.final_substeps}).free_parameters();
   CalibrationOptions o;
   o.scale = scales_for(current, fr, search.known_scales);
-  // The global step over the effects' parameters: the estimate is the best optimum found.
-  std::vector<CalibrationResult> optima;
-  for (auto& r : optima_of(c, current, chosen_candidates, fr, o))
-    if (optima.empty() || (r.ok && std::isfinite(r.cost) && r.outputs.allFinite())) optima.push_back(std::move(r));
-  const CalibrationResult& from_search = optima.front();
-  if (!from_search.ok) throw NumericalError("the augmented model blows up with the full substeps");
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < optima.size(); ++k)
-    if (optima[k].cost < optima[best].cost) best = k;
-  const CalibrationResult& r = optima[best];
-  if (best != 0)
-    d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " +
-                    fmt(r.cost) + " against " + fmt(from_search.cost) + " from the search's optimum)";
-  store_values(refined, r.parameters);
-  d.augmented = current;
-  d.fit_augmented_estimation = r.fit;
-  d.augmented_estimation = r.outputs;
-  if (val) {
-    Simulator av(current, *val, {opt.final_substeps});
-    d.augmented_validation = av.simulate(r.parameters).outputs;
-    d.fit_augmented_validation = fits(av.measured(), d.augmented_validation);
-  }
+  const GlobalStep step = global_step(c, current, search.chosen, fr, o, d);
+  const CalibrationResult& r = step.estimate();
+  store_values(current, r.parameters);
+  store_augmented(c, current, r, d);
   // Linearised output error around the estimate (stage_helpers: the bounded-error strips), and
   // the same residuals, sub-sampled and normalised, for the statistical intervals.
-  const Eigen::MatrixXd J = output_jacobian(current, est, opt.final_substeps, opt.threads, r.parameters, fr, o.scale, r.outputs);
+  const Eigen::MatrixXd& Y = c.exact.measured();
+  const Eigen::MatrixXd J =
+      output_jacobian(current, c.estimation, c.options.final_substeps, c.options.threads, r.parameters, fr, o.scale, r.outputs);
   const Eigen::MatrixXd Ra = Y - r.outputs;
-  OutputErrorIntervals oe = output_error_intervals(J, Ra, r.parameters, fr, o.scale);
-  // Another optimum whose residual stays inside the same bound is a point of the same
-  // bounded-error set, in another component of it: the interval is the hull of the linearised
-  // components around every such point (else it would leave out a parameter value the bound admits).
-  int components = 1;
-  for (std::size_t k = 0; oe.built && k < optima.size(); ++k) {
-    if (k == best || (optima[k].parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
-    const Eigen::MatrixXd Rk = Y - optima[k].outputs;
-    if (!inside_bound(Rk, oe)) continue;
-    try {
-      const Eigen::MatrixXd Jk = output_jacobian(current, est, opt.final_substeps, opt.threads, optima[k].parameters, fr, o.scale, optima[k].outputs);
-      const OutputErrorIntervals ok = output_error_intervals(Jk, Rk, optima[k].parameters, fr, o.scale, &oe.delta);
-      if (!ok.built) continue;
-      for (std::size_t i = 0; i < fr.size(); ++i) oe.lo[i] = std::min(oe.lo[i], ok.lo[i]), oe.hi[i] = std::max(oe.hi[i], ok.hi[i]);
-      oe.guaranteed = oe.guaranteed && ok.guaranteed;
-      ++components;
-    } catch (const std::exception&) {
-      // its sensitivities blow up: that component is not added (the note counts the ones that were)
-    }
-  }
-  const Eigen::Index stride = oe.stride, m = (N + stride - 1) / stride;
-  Eigen::MatrixXd Jw(m * ny, J.cols());
-  Eigen::VectorXd rw(m * ny);
-  for (Eigen::Index j = 0; j < ny; ++j)
-    for (Eigen::Index i = 0; i < m; ++i) {
-      Jw.row(j * m + i) = J.row(j * N + i * stride) / norm[static_cast<std::size_t>(j)];
-      rw[j * m + i] = Ra(i * stride, j) / norm[static_cast<std::size_t>(j)];
-    }
-  const std::vector<double>& oe_delta = oe.delta;
-  const bool have_pui = oe.built;
-  d.bound_note +=
-      "; output-error PUIs (estimates: linearised at the estimate, they never cut the bounded-error interval): strips every " +
-      std::to_string(stride) + "th sample, bound per output = 1.5 x the largest |residual| of the augmented model there";
-  if (!have_pui) d.bound_note += "; " + oe.note;
-  if (components > 1)
-    d.bound_note += "; " + std::to_string(components) +
-                    " optima of the global step inside the bound: the PUIs are the hull of their linearised components";
-  if (have_pui) d.bound_note += oe.guaranteed ? "; every finite PUI end certified by a safe bound" : "; some PUI ends not certified";
-  // Equation-error PUIs where the effect's equation allows them (linear parameters, measured or
-  // differentiable states): much less sensitive to what the model leaves out at high frequency.
-  std::map<std::string, EquationErrorResult> ee_results;
-  for (const auto& c : chosen_candidates) {
-    if (ee_results.count(c.equation)) continue;
-    try {
-      ee_results[c.equation] = equation_error_pui(current, est, c.equation);
-    } catch (const std::exception& e) {
-      ee_results[c.equation].note = std::string("equation-error PUI failed: ") + e.what();
-    }
-    d.bound_note += "; " + ee_results[c.equation].note;
-  }
-  const double dof = std::max<double>(1.0, static_cast<double>(rw.size() - Jw.cols()));
-  const double s2 = rw.squaredNorm() / dof;
-  Eigen::MatrixXd cov = (Jw.transpose() * Jw).completeOrthogonalDecomposition().pseudoInverse() * s2;
-  for (std::size_t k = 0; k < chosen_candidates.size(); ++k) {
-    for (std::size_t q = 0; q < chosen_candidates[k].parameters.size(); ++q) {
-      const std::string& pn = chosen_candidates[k].parameters[q];
-      EffectParameter ep;
-      ep.name = pn;
-      ep.role = chosen_candidates[k].roles[q];
-      ep.oe_delta = oe_delta;
-      for (std::size_t i = 0; i < fr.size(); ++i) {
-        if (current.parameters[static_cast<std::size_t>(fr[i])].name != pn) continue;
-        const auto ii = static_cast<Eigen::Index>(i);
-        ep.estimate = r.parameters[fr[i]];
-        // The parameter's own bounds (min/max) hold too, so every interval is cut to them.
-        const auto [min, max] = declared_range(current.parameters[static_cast<std::size_t>(fr[i])]);
-        ep.estimate_oe_lo = std::max(have_pui ? oe.lo[i] : -inf, min);
-        ep.estimate_oe_hi = std::min(have_pui ? oe.hi[i] : inf, max);
-        const auto ee = ee_results.find(chosen_candidates[k].equation);
-        if (ee != ee_results.end() && ee->second.built)
-          for (Eigen::Index c = 0; c < ee->second.box.size(); ++c)
-            if (ee->second.parameters[static_cast<std::size_t>(c)] == pn) {
-              ep.has_ee = true;
-              ep.ee_certified = ee->second.guaranteed;
-              ep.ee_delta = ee->second.delta;
-              ep.ee_lo = std::max(ee->second.box[c].lower(), min);
-              ep.ee_hi = std::min(ee->second.box[c].upper(), max);
-            }
-        set_bounded_error_interval(ep, min, max);
-        if (ep.has_ee && (ep.estimate_oe_hi < ep.ee_lo || ep.ee_hi < ep.estimate_oe_lo))
-          d.bound_note += "; the linearised output-error estimate of " + pn + " lies outside its equation-error PUI";
-        const double sd = std::sqrt(std::max(0.0, cov(ii, ii)));
-        ep.estimate_stat_lo = ep.estimate - 1.96 * sd;
-        ep.estimate_stat_hi = ep.estimate + 1.96 * sd;
-      }
-      d.effects[k].parameters.push_back(ep);
-    }
-  }
+  const OutputErrorIntervals oe = output_error_hull(c, current, fr, o, step, J, Ra, d);
+  const Eigen::MatrixXd cov = statistical_covariance(J, Ra, oe.stride, output_norms(Y));
+  const std::map<std::string, EquationErrorResult> ee = equation_error_puis(current, c.estimation, search.chosen, d);
+  for (std::size_t k = 0; k < search.chosen.size(); ++k)
+    for (std::size_t q = 0; q < search.chosen[k].parameters.size(); ++q)
+      d.effects[k].parameters.push_back(effect_parameter(search.chosen[k], q, current, fr, r, oe, ee, cov, d));
 }
 
 }  // namespace sets::diagnosis_stage
