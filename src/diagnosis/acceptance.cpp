@@ -1,6 +1,8 @@
 #include "sets/diagnosis/acceptance.hpp"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace sets {
 
@@ -26,6 +28,14 @@ bool passes(const std::vector<RuleCheck>& checks) {
   for (const auto& c : checks)
     if (!c.passed) return false;
   return true;
+}
+
+std::string failed_rules(const std::vector<RuleCheck>& checks) {
+  std::ostringstream o;
+  o << std::setprecision(3);
+  for (const auto& c : checks)
+    if (!c.passed) o << (o.tellp() > 0 ? ", " : "") << c.name << " " << c.value << " < " << c.threshold;
+  return o.str();
 }
 
 }  // namespace sets

@@ -527,9 +527,9 @@ void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& 
     for (const Trial* j : special_cases) {
       Fixed fixed;
       if (!trials[i].accepted || !nests(trials[i].cand, j->cand, &fixed)) continue;
-      if (!passes(check_rules(against(r, noise, trials[i], *j), rules))) {
+      if (const auto checks = check_rules(against(r, noise, trials[i], *j), rules); !passes(checks)) {
         trials[i].accepted = false;
-        trials[i].not_beyond = j->cand.effect + " (fails a rule against it)";
+        trials[i].not_beyond = j->cand.effect + " (fails " + failed_rules(checks) + " against it)";
       } else if (std::string why; !excludes(i, fixed, why)) {
         trials[i].accepted = false;
         trials[i].not_beyond = j->cand.effect + " (output-error interval linearised at its optimum: " + why + ")";
@@ -552,7 +552,7 @@ void say_round(const Context& c, const Round& r) {
       line << "misfit " << fixed1(100 * t.cost / std::max(r.cost_cur, 1e-300)) << " % of the current model's";
       if (c.validation) line << ", validation " << fixed1(100 * t.cost_val / std::max(r.cost_cur_val, 1e-300)) << " %";
       line << (t.accepted             ? ", passes every rule"
-               : t.not_beyond.empty() ? ", fails a rule"
+               : t.not_beyond.empty() ? ", fails " + failed_rules(t.rules)
                                       : ", not beyond its special case " + t.not_beyond);
     }
     c.say(line.str());

@@ -36,12 +36,18 @@ void only_fails(const HypothesisEvidence& e, const std::string& name) {
   const auto checks = check_rules(e);
   EXPECT_FALSE(passes(checks)) << name;
   for (const auto& c : checks) EXPECT_EQ(c.passed, c.name != name) << c.name << " value " << c.value;
+  // The report names the rule that failed, with its value and threshold, and no other.
+  const std::string why = failed_rules(checks);
+  EXPECT_EQ(why.rfind(name + " ", 0), 0u) << why;
+  EXPECT_NE(why.find(" < "), std::string::npos) << why;
+  EXPECT_EQ(why.find(','), std::string::npos) << why;
 }
 
 }  // namespace
 
 TEST(Acceptance, AGoodHypothesisPassesEveryRule) {
   const auto checks = check_rules(good());
+  EXPECT_EQ(failed_rules(checks), "");
   ASSERT_EQ(checks.size(), 4u);
   EXPECT_TRUE(passes(checks));
   EXPECT_NEAR(rule(checks, "estimation_gain").value, 0.5, 1e-12);

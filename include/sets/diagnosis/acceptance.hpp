@@ -39,5 +39,8 @@ struct RuleCheck {
 std::vector<RuleCheck> check_rules(const HypothesisEvidence& e, const AcceptanceRules& rules = {});
 /// Every applicable rule passed.
 bool passes(const std::vector<RuleCheck>& checks);
+/// The applicable rules that failed, each with its value and threshold ("own_term 0.00123 < 0.1,
+/// ..."), for a report that says why; empty when every one passed.
+std::string failed_rules(const std::vector<RuleCheck>& checks);
 
 }  // namespace sets
