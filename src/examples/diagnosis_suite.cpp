@@ -161,6 +161,144 @@ std::string coverage_misses(const std::vector<SuitePlantResult>& results) {
   return o.str();
 }
 
+// The counts behind the suite's figures, in one pass over the plants.
+struct SuiteTally {
+  int one = 0, one_right = 0, two = 0, two_both = 0, two_one = 0, clean = 0, clean_invented = 0, clean_nothing = 0, errors = 0;
+  int cov = 0, cov_bounded = 0, cov_in = 0, cov_estimate = 0, cov_meet = 0, right_place = 0, named_true = 0;
+  double seconds = 0;
+  std::vector<double> ratios, ratios_nominal;
+  std::map<std::string, std::map<std::string, int>> confusion;
+  std::map<std::string, int> tp, fp, fn;
+  std::set<std::string> labels{"none"};
+};
+
+SuiteTally tally(const std::vector<SuitePlantResult>& results) {
+  SuiteTally t;
+  for (const auto& r : results) {
+    t.seconds += r.seconds;
+    if (!r.error.empty()) ++t.errors;
+    for (double x : r.noise_ratio) t.ratios.push_back(x);
+    for (double x : r.noise_ratio_nominal) t.ratios_nominal.push_back(x);
+    std::vector<std::string> truth;
+    for (const auto& e : r.truth) truth.push_back(e.name);
+    if (truth.empty()) {
+      ++t.clean;
+      t.clean_invented += !r.named.empty();
+      t.clean_nothing += r.answer == "nothing_missing";
+    } else if (truth.size() == 1) {
+      ++t.one;
+      t.one_right += r.first_right();
+    } else {
+      ++t.two;
+      t.two_both += r.all_named();
+      int n = 0;
+      for (const auto& e : truth) n += std::find(r.named.begin(), r.named.end(), e) != r.named.end();
+      t.two_one += n >= 1;
+    }
+    if (truth.size() <= 1) {
+      const std::string row = truth.empty() ? "none" : truth.front(), col = r.named.empty() ? "none" : r.named.front();
+      ++t.confusion[row][col];
+      t.labels.insert(row);
+      t.labels.insert(col);
+    }
+    for (const auto& e : truth) (std::find(r.named.begin(), r.named.end(), e) != r.named.end() ? t.tp : t.fn)[e]++;
+    for (const auto& n : r.named)
+      if (std::find(truth.begin(), truth.end(), n) == truth.end()) t.fp[n]++;
+    for (std::size_t k = 0; k < r.named.size(); ++k)
+      for (const auto& e : r.truth)
+        if (e.name == r.named[k]) ++t.named_true, t.right_place += e.where == r.places[k];
+    for (const auto& c : r.coverage)
+      ++t.cov, t.cov_bounded += c.bounded, t.cov_in += c.bounded && c.inside, t.cov_estimate += c.inside_estimate, t.cov_meet += c.inside_meet;
+  }
+  return t;
+}
+
+// One row per plant.
+void write_plant_table(std::ostream& o, const std::vector<SuitePlantResult>& results) {
+  o << "| plant | family | true effects (where, strength) | named (where) | answer | first right | all named | fit val: nominal -> augmented | "
+       "noise est/true: final (nominal's if different) | true values inside: bounded-error; estimate | s |\n"
+       "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& r : results) {
+    std::string truth, named;
+    for (const auto& t : r.truth) {
+      std::ostringstream x;
+      x << t.name << " (" << t.where << ", " << std::round(100 * t.strength) << " %";
+      if (t.detectability > 0) x << ", " << std::setprecision(2) << t.detectability << " sigma" << std::setprecision(1);
+      x << ")";
+      truth += (truth.empty() ? "" : ", ") + x.str();
+    }
+    for (std::size_t k = 0; k < r.named.size(); ++k) named += (k ? ", " : "") + r.named[k] + " (" + r.places[k] + ")";
+    o << "| " << r.name << " | " << r.family << " | " << (truth.empty() ? "none" : truth) << " | " << (named.empty() ? "none" : named)
+      << " | " << (r.error.empty() ? r.answer : "error: " + r.error) << " | " << (r.first_right() ? "yes" : "**no**") << " | "
+      << (r.all_named() ? "yes" : "**no**") << " | " << r.fit_nominal << " -> " << r.fit_augmented << " | ";
+    for (std::size_t j = 0; j < r.noise_ratio.size(); ++j) {
+      o << (j ? ", " : "") << std::setprecision(2) << r.noise_ratio[j];
+      if (j < r.noise_ratio_nominal.size() && r.noise_ratio_nominal[j] != r.noise_ratio[j]) o << " (" << r.noise_ratio_nominal[j] << ")";
+    }
+    int bounded = 0, inside = 0, inside_estimate = 0;
+    for (const auto& c : r.coverage) bounded += c.bounded, inside += c.bounded && c.inside, inside_estimate += c.inside_estimate;
+    o << std::setprecision(1) << " | " << inside << " of " << bounded << "; " << inside_estimate << " of " << r.coverage.size()
+      << " | " << r.seconds << " |\n";
+  }
+  o << "\n";
+}
+
+void write_summary(std::ostream& o, const SuiteTally& t, std::size_t plants) {
+  o << "Plants: " << plants << " (" << t.one << " with one effect, " << t.two << " with two, " << t.clean << " clean; " << t.errors
+    << " failed); " << t.seconds << " s of diagnosis in all (" << (plants == 0 ? 0.0 : t.seconds / static_cast<double>(plants))
+    << " s per plant).\n\n";
+  o << "- one-effect plants, first named right: " << pct(t.one_right, t.one) << "\n";
+  o << "- two-effect plants, both named: " << pct(t.two_both, t.two) << " (at least one: " << pct(t.two_one, t.two) << ")\n";
+  o << "- clean plants with an invented effect: " << pct(t.clean_invented, t.clean) << " (answered \"no physics is missing\": "
+    << pct(t.clean_nothing, t.clean) << ")\n";
+  o << "- true effects named at the true place: " << pct(t.right_place, t.named_true) << "\n";
+  o << "- true parameter values (that map cleanly) with a bounded-error interval (certified equation-error PUI): "
+    << pct(t.cov_bounded, t.cov) << "; inside it: " << pct(t.cov_in, t.cov_bounded) << "\n";
+  o << "- inside the estimate (output-error PUI linearised at the estimate): " << pct(t.cov_estimate, t.cov)
+    << "; inside the meet of the two (the reported interval before 2026-11-23): " << pct(t.cov_meet, t.cov) << "\n";
+}
+
+void write_noise_ratios(std::ostream& o, std::vector<double> x, const char* label) {
+  if (x.empty()) return;
+  std::sort(x.begin(), x.end());
+  auto q = [&](double f) { return x[static_cast<std::size_t>(f * static_cast<double>(x.size() - 1))]; };
+  int within = 0, under = 0, over = 0;
+  for (double v : x) within += v >= 0.5 && v <= 2, under += v < 0.5, over += v > 2;
+  o << std::setprecision(2) << "- " << label << " (" << x.size() << " outputs): median " << q(0.5) << ", 10 % " << q(0.1)
+    << ", 90 % " << q(0.9) << ", lowest " << x.front() << ", highest " << x.back() << "; within a factor 2: "
+    << pct(within, static_cast<int>(x.size())) << " (" << under << " under 0.5, " << over << " over 2)\n" << std::setprecision(1);
+}
+
+void write_confusion(std::ostream& o, SuiteTally& t) {
+  o << "\nConfusion matrix (one-effect and clean plants; rows: true effect, columns: first named):\n\n| true \\ named |";
+  for (const auto& l : t.labels) o << " " << l << " |";
+  o << "\n| --- |";
+  for (std::size_t i = 0; i < t.labels.size(); ++i) o << " --- |";
+  o << "\n";
+  for (const auto& row : t.labels) {
+    if (!t.confusion.count(row)) continue;
+    o << "| " << row << " |";
+    for (const auto& col : t.labels) {
+      const int n = t.confusion[row].count(col) ? t.confusion[row][col] : 0;
+      o << " " << (n ? std::to_string(n) : "") << " |";
+    }
+    o << "\n";
+  }
+}
+
+void write_per_effect(std::ostream& o, SuiteTally& t) {
+  o << "\nPer effect (all plants; a named effect counts wherever it is named):\n\n| effect | true | named right | precision | recall |\n| --- | --- | --- | --- | --- |\n";
+  std::set<std::string> effects;
+  for (const auto& [e, n] : t.tp) effects.insert(e);
+  for (const auto& [e, n] : t.fn) effects.insert(e);
+  for (const auto& [e, n] : t.fp) effects.insert(e);
+  for (const auto& e : effects) {
+    const int right = t.tp.count(e) ? t.tp[e] : 0, f = t.fp.count(e) ? t.fp[e] : 0, m = t.fn.count(e) ? t.fn[e] : 0;
+    o << "| " << e << " | " << right + m << " | " << right << " | " << (right + f ? pct(right, right + f) : "–") << " | "
+      << (right + m ? pct(right, right + m) : "–") << " |\n";
+  }
+}
+
 }  // namespace
 
 std::vector<SuitePlantResult> run_random_suite(unsigned first_seed, int count, const SuiteOptions& o) {
@@ -177,124 +315,13 @@ std::vector<SuitePlantResult> run_fixed_suite(const std::string& only, const Sui
 std::string suite_report(const std::vector<SuitePlantResult>& results, bool table) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(1);
-  if (table) {
-    o << "| plant | family | true effects (where, strength) | named (where) | answer | first right | all named | fit val: nominal -> augmented | "
-         "noise est/true: final (nominal's if different) | true values inside: bounded-error; estimate | s |\n"
-         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    for (const auto& r : results) {
-      std::string truth, named;
-      for (const auto& t : r.truth) {
-        std::ostringstream x;
-        x << t.name << " (" << t.where << ", " << std::round(100 * t.strength) << " %";
-        if (t.detectability > 0) x << ", " << std::setprecision(2) << t.detectability << " sigma" << std::setprecision(1);
-        x << ")";
-        truth += (truth.empty() ? "" : ", ") + x.str();
-      }
-      for (std::size_t k = 0; k < r.named.size(); ++k) named += (k ? ", " : "") + r.named[k] + " (" + r.places[k] + ")";
-      o << "| " << r.name << " | " << r.family << " | " << (truth.empty() ? "none" : truth) << " | " << (named.empty() ? "none" : named)
-        << " | " << (r.error.empty() ? r.answer : "error: " + r.error) << " | " << (r.first_right() ? "yes" : "**no**") << " | "
-        << (r.all_named() ? "yes" : "**no**") << " | " << r.fit_nominal << " -> " << r.fit_augmented << " | ";
-      for (std::size_t j = 0; j < r.noise_ratio.size(); ++j) {
-        o << (j ? ", " : "") << std::setprecision(2) << r.noise_ratio[j];
-        if (j < r.noise_ratio_nominal.size() && r.noise_ratio_nominal[j] != r.noise_ratio[j]) o << " (" << r.noise_ratio_nominal[j] << ")";
-      }
-      int bounded = 0, inside = 0, inside_estimate = 0;
-      for (const auto& c : r.coverage) bounded += c.bounded, inside += c.bounded && c.inside, inside_estimate += c.inside_estimate;
-      o << std::setprecision(1) << " | " << inside << " of " << bounded << "; " << inside_estimate << " of " << r.coverage.size()
-        << " | " << r.seconds << " |\n";
-    }
-    o << "\n";
-  }
-  int one = 0, one_right = 0, two = 0, two_both = 0, two_one = 0, clean = 0, clean_invented = 0, clean_nothing = 0, errors = 0;
-  int cov = 0, cov_bounded = 0, cov_in = 0, cov_estimate = 0, cov_meet = 0, right_place = 0, named_true = 0;
-  double seconds = 0;
-  std::vector<double> ratios, ratios_nominal;
-  std::map<std::string, std::map<std::string, int>> confusion;
-  std::map<std::string, int> tp, fp, fn;
-  std::set<std::string> labels{"none"};
-  for (const auto& r : results) {
-    seconds += r.seconds;
-    if (!r.error.empty()) ++errors;
-    for (double x : r.noise_ratio) ratios.push_back(x);
-    for (double x : r.noise_ratio_nominal) ratios_nominal.push_back(x);
-    std::vector<std::string> truth;
-    for (const auto& t : r.truth) truth.push_back(t.name);
-    if (truth.empty()) {
-      ++clean;
-      clean_invented += !r.named.empty();
-      clean_nothing += r.answer == "nothing_missing";
-    } else if (truth.size() == 1) {
-      ++one;
-      one_right += r.first_right();
-    } else {
-      ++two;
-      two_both += r.all_named();
-      int n = 0;
-      for (const auto& t : truth) n += std::find(r.named.begin(), r.named.end(), t) != r.named.end();
-      two_one += n >= 1;
-    }
-    if (truth.size() <= 1) {
-      const std::string row = truth.empty() ? "none" : truth.front(), col = r.named.empty() ? "none" : r.named.front();
-      ++confusion[row][col];
-      labels.insert(row);
-      labels.insert(col);
-    }
-    for (const auto& t : truth) (std::find(r.named.begin(), r.named.end(), t) != r.named.end() ? tp : fn)[t]++;
-    for (const auto& n : r.named)
-      if (std::find(truth.begin(), truth.end(), n) == truth.end()) fp[n]++;
-    for (std::size_t k = 0; k < r.named.size(); ++k)
-      for (const auto& t : r.truth)
-        if (t.name == r.named[k]) ++named_true, right_place += t.where == r.places[k];
-    for (const auto& c : r.coverage)
-      ++cov, cov_bounded += c.bounded, cov_in += c.bounded && c.inside, cov_estimate += c.inside_estimate, cov_meet += c.inside_meet;
-  }
-  o << "Plants: " << results.size() << " (" << one << " with one effect, " << two << " with two, " << clean << " clean; " << errors
-    << " failed); " << seconds << " s of diagnosis in all (" << (results.empty() ? 0.0 : seconds / static_cast<double>(results.size()))
-    << " s per plant).\n\n";
-  o << "- one-effect plants, first named right: " << pct(one_right, one) << "\n";
-  o << "- two-effect plants, both named: " << pct(two_both, two) << " (at least one: " << pct(two_one, two) << ")\n";
-  o << "- clean plants with an invented effect: " << pct(clean_invented, clean) << " (answered \"no physics is missing\": "
-    << pct(clean_nothing, clean) << ")\n";
-  o << "- true effects named at the true place: " << pct(right_place, named_true) << "\n";
-  o << "- true parameter values (that map cleanly) with a bounded-error interval (certified equation-error PUI): "
-    << pct(cov_bounded, cov) << "; inside it: " << pct(cov_in, cov_bounded) << "\n";
-  o << "- inside the estimate (output-error PUI linearised at the estimate): " << pct(cov_estimate, cov)
-    << "; inside the meet of the two (the reported interval before 2026-11-23): " << pct(cov_meet, cov) << "\n";
-  auto ratio_line = [&](std::vector<double> x, const char* label) {
-    if (x.empty()) return;
-    std::sort(x.begin(), x.end());
-    auto q = [&](double f) { return x[static_cast<std::size_t>(f * static_cast<double>(x.size() - 1))]; };
-    int within = 0, under = 0, over = 0;
-    for (double v : x) within += v >= 0.5 && v <= 2, under += v < 0.5, over += v > 2;
-    o << std::setprecision(2) << "- " << label << " (" << x.size() << " outputs): median " << q(0.5) << ", 10 % " << q(0.1)
-      << ", 90 % " << q(0.9) << ", lowest " << x.front() << ", highest " << x.back() << "; within a factor 2: "
-      << pct(within, static_cast<int>(x.size())) << " (" << under << " under 0.5, " << over << " over 2)\n" << std::setprecision(1);
-  };
-  ratio_line(ratios, "estimated / true noise level, final model's residual");
-  ratio_line(ratios_nominal, "estimated / true noise level, calibrated nominal's residual (the rules' floor)");
-  o << "\nConfusion matrix (one-effect and clean plants; rows: true effect, columns: first named):\n\n| true \\ named |";
-  for (const auto& l : labels) o << " " << l << " |";
-  o << "\n| --- |";
-  for (std::size_t i = 0; i < labels.size(); ++i) o << " --- |";
-  o << "\n";
-  for (const auto& row : labels) {
-    if (!confusion.count(row)) continue;
-    o << "| " << row << " |";
-    for (const auto& col : labels) {
-      const int n = confusion[row].count(col) ? confusion[row][col] : 0;
-      o << " " << (n ? std::to_string(n) : "") << " |";
-    }
-    o << "\n";
-  }
-  o << "\nPer effect (all plants; a named effect counts wherever it is named):\n\n| effect | true | named right | precision | recall |\n| --- | --- | --- | --- | --- |\n";
-  std::set<std::string> effects;
-  for (const auto& [e, n] : tp) effects.insert(e);
-  for (const auto& [e, n] : fn) effects.insert(e);
-  for (const auto& [e, n] : fp) effects.insert(e);
-  for (const auto& e : effects) {
-    const int t = tp.count(e) ? tp[e] : 0, f = fp.count(e) ? fp[e] : 0, m = fn.count(e) ? fn[e] : 0;
-    o << "| " << e << " | " << t + m << " | " << t << " | " << (t + f ? pct(t, t + f) : "–") << " | " << (t + m ? pct(t, t + m) : "–") << " |\n";
-  }
+  if (table) write_plant_table(o, results);
+  SuiteTally t = tally(results);
+  write_summary(o, t, results.size());
+  write_noise_ratios(o, t.ratios, "estimated / true noise level, final model's residual");
+  write_noise_ratios(o, t.ratios_nominal, "estimated / true noise level, calibrated nominal's residual (the rules' floor)");
+  write_confusion(o, t);
+  write_per_effect(o, t);
   o << coverage_misses(results);
   return o.str();
 }
