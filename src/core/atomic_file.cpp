@@ -155,7 +155,18 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 
 // ---------------------------------------------------------------- folders
 
-AtomicDirectory::AtomicDirectory(const fs::path& target) : target_(target), staging_(target) {
+namespace {
+
+// "report/" names the folder "report": without its trailing separators (an empty file name would
+// put the staging folder inside the target itself).
+fs::path folder_named(fs::path p) {
+  while (!p.has_filename() && p.has_relative_path()) p = p.parent_path();
+  return p;
+}
+
+}  // namespace
+
+AtomicDirectory::AtomicDirectory(const fs::path& target) : target_(folder_named(target)), staging_(target_) {
   std::error_code ec;
   if (!fs::create_directory(staging_.path(), ec) || ec)
     throw InputError(target.string() + ": cannot create the folder (parent folder missing or not writable)");

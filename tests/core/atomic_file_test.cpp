@@ -117,6 +117,18 @@ TEST(AtomicDirectory, CommitPutsTheFolderInPlaceAsAWhole) {
   EXPECT_EQ(s.listing(), "report\n");
 }
 
+// A target written with trailing separators is the same folder, staged beside it, not inside it.
+TEST(AtomicDirectory, TrailingSeparatorsNameTheSameFolder) {
+  ScratchFolder s;
+  sets::AtomicDirectory d(s.path / "report//");
+  EXPECT_EQ(d.target(), s.path / "report");
+  EXPECT_EQ(d.staging().parent_path(), fs::absolute(s.path));
+  std::ofstream(d.staging() / "a.txt") << "1";
+  d.commit();
+  EXPECT_EQ(read(s.path / "report" / "a.txt"), "1");
+  EXPECT_EQ(s.listing(), "report\n");
+}
+
 TEST(AtomicDirectory, TargetThatIsAFileIsRefused) {
   ScratchFolder s;
   std::ofstream(s.path / "report") << "a file";
