@@ -48,112 +48,142 @@ void write_html_page(const Diagnosis& d, const fs::path& dir, const std::vector<
   if (!o) throw InputError((dir / "index.html").string() + ": cannot write");
 }
 
-}  // namespace
-
-void write_report(const Diagnosis& d, const std::string& dir, const std::string& augmented_text) {
-  AtomicDirectory out(dir);
-  const fs::path tmp = out.staging();
-  std::vector<std::string> pngs;
+// The gnuplot script of the report's figures, written into the staging folder `dir`; `pngs`
+// lists the figures it draws, in the order the page shows them.
+struct PlotScript {
+  fs::path dir;
   std::ostringstream gp;
-  gp << "set grid\nset key opaque\n";
+  std::vector<std::string> pngs;
+};
+
+// An axis label with the model file's unit, if it declares one.
+std::string axis_label(const Diagnosis& d, const std::string& name) {
+  const std::string u = d.nominal.unit(name);
+  return u.empty() ? name : name + " [" + u + "]";
+}
+
+// One output's two panels: its signals, and under them its residuals (measured - nominal,
+// measured - augmented); the mismatch windows shaded on both when `windows`.
+void output_panels(PlotScript& s, const Diagnosis& d, const std::string& data, Eigen::Index j, bool windows) {
   const auto ny = static_cast<Eigen::Index>(d.outputs.size());
-  // Each output: its signals, and under them its residuals (measured - nominal, measured -
-  // augmented); the mismatch windows shaded on both; axes with the model file's units.
-  auto label = [&](const std::string& name) {
-    const std::string u = d.nominal.unit(name);
-    return u.empty() ? name : name + " [" + u + "]";
-  };
-  auto signals = [&](const std::string& tag, const Eigen::VectorXd& t, const Eigen::MatrixXd& meas,
-                     const Eigen::MatrixXd& nom, const Eigen::MatrixXd& aug, bool windows) {
-    write_series((tmp / (tag + ".dat")).string(), t, {&meas, &nom, &aug});
-    gp << "set terminal pngcairo size 1200," << std::max<Eigen::Index>(800, 460 * ny) << " noenhanced\n";
-    gp << "set output " << gnuplot_quote((tmp / ("signals_" + tag + ".png")).string()) << "\n";
-    gp << "set multiplot title "
-       << gnuplot_quote("measured, nominal (calibrated) and augmented: " + tag + " record" +
-                        (windows ? " (shaded: mismatch windows)" : "")) << "\n";
-    gp << "set lmargin at screen 0.09\nset rmargin at screen 0.97\n";
-    const double block = 0.92 / static_cast<double>(ny);
-    for (Eigen::Index j = 0; j < ny; ++j) {
-      const std::string& out = d.outputs[static_cast<std::size_t>(j)];
-      const double top = 0.94 - static_cast<double>(j) * block, split = top - 0.6 * block, bottom = top - 0.9 * block;
-      const std::string data = gnuplot_quote((tmp / (tag + ".dat")).string());
-      const auto c = [&](int block_index) { return std::to_string(2 + block_index * ny + j); };
-      for (int panel = 0; panel < 2; ++panel) {
-        gp << "unset object\n";
-        if (windows) {
-          int id = 1;
-          for (const auto& w : d.windows)
-            if (w.output == out)
-              gp << "set object " << id++ << " rect from " << w.start << ", graph 0 to " << w.end
-                 << ", graph 1 fc rgb '#ffd0d0' fs solid 0.5 noborder behind\n";
-        }
-        gp << "set tmargin at screen " << (panel == 0 ? top : split - 0.03 * block) << "\nset bmargin at screen "
-           << (panel == 0 ? split : bottom) << "\n";
-        if (panel == 0) {
-          gp << "set format x ''\nunset xlabel\nset ylabel " << gnuplot_quote(label(out)) << "\n";
-          gp << "plot " << data << " using 1:" << c(0) << " with lines lw 2 lc rgb 'black' title 'measured', '' using 1:"
-             << c(1) << " with lines lc rgb 'red' title 'nominal', '' using 1:" << c(2)
-             << " with lines lc rgb 'blue' title 'augmented'\n";
-        } else {
-          const std::string u = d.nominal.unit(out);
-          gp << "set format x '%g'\nset xlabel 't [s]'\nset ylabel " << gnuplot_quote(u.empty() ? "residual" : "residual [" + u + "]")
-             << "\n";
-          gp << "plot " << data << " using 1:(column(" << c(0) << ")-column(" << c(1)
-             << ")) with lines lc rgb 'red' title 'measured - nominal', '' using 1:(column(" << c(0) << ")-column(" << c(2)
-             << ")) with lines lc rgb 'blue' title 'measured - augmented'\n";
-        }
-      }
+  const std::string& out = d.outputs[static_cast<std::size_t>(j)];
+  const double block = 0.92 / static_cast<double>(ny);
+  const double top = 0.94 - static_cast<double>(j) * block, split = top - 0.6 * block, bottom = top - 0.9 * block;
+  const auto c = [&](int block_index) { return std::to_string(2 + block_index * ny + j); };
+  std::ostringstream& gp = s.gp;
+  for (int panel = 0; panel < 2; ++panel) {
+    gp << "unset object\n";
+    if (windows) {
+      int id = 1;
+      for (const auto& w : d.windows)
+        if (w.output == out)
+          gp << "set object " << id++ << " rect from " << w.start << ", graph 0 to " << w.end
+             << ", graph 1 fc rgb '#ffd0d0' fs solid 0.5 noborder behind\n";
     }
-    gp << "unset multiplot\nunset object\nset format x '%g'\nset lmargin\nset rmargin\nset tmargin\nset bmargin\n";
-    pngs.push_back("signals_" + tag + ".png");
-  };
-  signals("estimation", d.time_estimation, d.measured_estimation, d.nominal_estimation, d.augmented_estimation, true);
-  if (d.has_validation)
-    signals("validation", d.time_validation, d.measured_validation, d.nominal_validation, d.augmented_validation, false);
+    gp << "set tmargin at screen " << (panel == 0 ? top : split - 0.03 * block) << "\nset bmargin at screen "
+       << (panel == 0 ? split : bottom) << "\n";
+    if (panel == 0) {
+      gp << "set format x ''\nunset xlabel\nset ylabel " << gnuplot_quote(axis_label(d, out)) << "\n";
+      gp << "plot " << data << " using 1:" << c(0) << " with lines lw 2 lc rgb 'black' title 'measured', '' using 1:"
+         << c(1) << " with lines lc rgb 'red' title 'nominal', '' using 1:" << c(2)
+         << " with lines lc rgb 'blue' title 'augmented'\n";
+    } else {
+      const std::string u = d.nominal.unit(out);
+      gp << "set format x '%g'\nset xlabel 't [s]'\nset ylabel " << gnuplot_quote(u.empty() ? "residual" : "residual [" + u + "]")
+         << "\n";
+      gp << "plot " << data << " using 1:(column(" << c(0) << ")-column(" << c(1)
+         << ")) with lines lc rgb 'red' title 'measured - nominal', '' using 1:(column(" << c(0) << ")-column(" << c(2)
+         << ")) with lines lc rgb 'blue' title 'measured - augmented'\n";
+    }
+  }
+}
+
+// signals_<tag>.png: every output of one record, measured, nominal (calibrated) and augmented.
+void signals_figure(PlotScript& s, const Diagnosis& d, const std::string& tag, const Eigen::VectorXd& t,
+                    const Eigen::MatrixXd& meas, const Eigen::MatrixXd& nom, const Eigen::MatrixXd& aug, bool windows) {
+  const auto ny = static_cast<Eigen::Index>(d.outputs.size());
+  write_series((s.dir / (tag + ".dat")).string(), t, {&meas, &nom, &aug});
+  std::ostringstream& gp = s.gp;
+  gp << "set terminal pngcairo size 1200," << std::max<Eigen::Index>(800, 460 * ny) << " noenhanced\n";
+  gp << "set output " << gnuplot_quote((s.dir / ("signals_" + tag + ".png")).string()) << "\n";
+  gp << "set multiplot title "
+     << gnuplot_quote("measured, nominal (calibrated) and augmented: " + tag + " record" +
+                      (windows ? " (shaded: mismatch windows)" : "")) << "\n";
+  gp << "set lmargin at screen 0.09\nset rmargin at screen 0.97\n";
+  const std::string data = gnuplot_quote((s.dir / (tag + ".dat")).string());
+  for (Eigen::Index j = 0; j < ny; ++j) output_panels(s, d, data, j, windows);
+  gp << "unset multiplot\nunset object\nset format x '%g'\nset lmargin\nset rmargin\nset tmargin\nset bmargin\n";
+  s.pngs.push_back("signals_" + tag + ".png");
+}
+
+// signature.png: the nominal's residual against the signature variable, and the effects found as
+// they show in that output (augmented - nominal at the same samples) over it.
+void signature_figure(PlotScript& s, const Diagnosis& d) {
+  const auto ny = static_cast<Eigen::Index>(d.outputs.size());
+  Eigen::Index main = 0;
+  while (main + 1 < ny && d.outputs[static_cast<std::size_t>(main)] != d.signature_output) ++main;
+  const bool overlay = !d.effects.empty() && d.augmented_estimation.rows() == d.signature_x.size() &&
+                       d.nominal_estimation.rows() == d.signature_x.size();
   {
-    // The effects found as they show in this output: augmented - nominal at the same samples.
-    Eigen::Index main = 0;
-    while (main + 1 < ny && d.outputs[static_cast<std::size_t>(main)] != d.signature_output) ++main;
-    const bool overlay = !d.effects.empty() && d.augmented_estimation.rows() == d.signature_x.size() &&
-                         d.nominal_estimation.rows() == d.signature_x.size();
-    std::ofstream o(tmp / "signature.dat");
+    std::ofstream o(s.dir / "signature.dat");
     const Eigen::Index N = d.signature_x.size(), stride = std::max<Eigen::Index>(1, N / 8000);
     for (Eigen::Index k = 0; k < N; k += stride)
       o << d.signature_x[k] << " " << d.signature_residual[k] << " "
         << (overlay ? d.augmented_estimation(k, main) - d.nominal_estimation(k, main) : 0.0) << "\n";
-    std::string effects;
-    for (const auto& e : d.effects) effects += (effects.empty() ? "" : ", ") + e.name;
-    gp << "set terminal pngcairo size 1200,800 noenhanced\n";
-    gp << "set output " << gnuplot_quote((tmp / "signature.png").string()) << "\n";
-    gp << "set title "
-       << gnuplot_quote("signature: residual of " + d.signature_output + " (measured - calibrated nominal) against " +
-                        d.signature_variable)
-       << "\n";
-    gp << "set xlabel " << gnuplot_quote(label(d.signature_variable)) << "\nset ylabel "
-       << gnuplot_quote("residual of " + label(d.signature_output)) << "\n";
-    gp << "plot " << gnuplot_quote((tmp / "signature.dat").string())
-       << " using 1:2 with points pt 7 ps 0.3 lc rgb '#606060' title 'residual'";
-    if (overlay) gp << ", '' using 1:3 with points pt 7 ps 0.3 lc rgb 'blue' title " << gnuplot_quote("fitted: augmented - nominal (" + effects + ")");
-    gp << "\nunset title\n";
-    pngs.push_back("signature.png");
   }
+  std::string effects;
+  for (const auto& e : d.effects) effects += (effects.empty() ? "" : ", ") + e.name;
+  std::ostringstream& gp = s.gp;
+  gp << "set terminal pngcairo size 1200,800 noenhanced\n";
+  gp << "set output " << gnuplot_quote((s.dir / "signature.png").string()) << "\n";
+  gp << "set title "
+     << gnuplot_quote("signature: residual of " + d.signature_output + " (measured - calibrated nominal) against " +
+                      d.signature_variable)
+     << "\n";
+  gp << "set xlabel " << gnuplot_quote(axis_label(d, d.signature_variable)) << "\nset ylabel "
+     << gnuplot_quote("residual of " + axis_label(d, d.signature_output)) << "\n";
+  gp << "plot " << gnuplot_quote((s.dir / "signature.dat").string())
+     << " using 1:2 with points pt 7 ps 0.3 lc rgb '#606060' title 'residual'";
+  if (overlay) gp << ", '' using 1:3 with points pt 7 ps 0.3 lc rgb 'blue' title " << gnuplot_quote("fitted: augmented - nominal (" + effects + ")");
+  gp << "\nunset title\n";
+  s.pngs.push_back("signature.png");
+}
+
+// Runs the script and checks that every figure it should draw is there.
+void draw_figures(const PlotScript& s) {
   {
-    std::ofstream o(tmp / "plots.gp");
-    o << gp.str();
+    std::ofstream o(s.dir / "plots.gp");
+    o << s.gp.str();
   }
-  sets::app::run_gnuplot(tmp / "plots.gp", tmp / "gnuplot.log");
-  for (const auto& p : pngs)
-    if (!fs::exists(tmp / p) || fs::file_size(tmp / p) == 0) throw InputError("gnuplot did not write " + p);
+  sets::app::run_gnuplot(s.dir / "plots.gp", s.dir / "gnuplot.log");
+  for (const auto& p : s.pngs)
+    if (!fs::exists(s.dir / p) || fs::file_size(s.dir / p) == 0) throw InputError("gnuplot did not write " + p);
+}
+
+}  // namespace
+
+void write_report(const Diagnosis& d, const std::string& dir, const std::string& augmented_text) {
+  AtomicDirectory out(dir);
+  PlotScript s;
+  s.dir = out.staging();
+  s.gp << "set grid\nset key opaque\n";
+  signals_figure(s, d, "estimation", d.time_estimation, d.measured_estimation, d.nominal_estimation, d.augmented_estimation,
+                 true);
+  if (d.has_validation)
+    signals_figure(s, d, "validation", d.time_validation, d.measured_validation, d.nominal_validation,
+                   d.augmented_validation, false);
+  signature_figure(s, d);
+  draw_figures(s);
   {
-    std::ofstream o(tmp / "report.txt");
+    std::ofstream o(s.dir / "report.txt");
     o << diagnosis_text(d);
-    std::ofstream a(tmp / "augmented_model.json");
+    std::ofstream a(s.dir / "augmented_model.json");
     a << augmented_text;
     if (!o || !a) throw InputError(dir + ": cannot write the report");
   }
-  write_html_page(d, tmp, pngs);
+  write_html_page(d, s.dir, s.pngs);
   // Only the report's own files move into place.
-  for (const auto& e : fs::directory_iterator(tmp)) {
+  for (const auto& e : fs::directory_iterator(s.dir)) {
     const std::string n = e.path().filename().string();
     if (n.ends_with(".dat") || n == "plots.gp" || n == "gnuplot.log") fs::remove(e.path());
   }

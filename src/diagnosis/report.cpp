@@ -12,24 +12,28 @@ using diagnosis_stage::fixed1;
 using diagnosis_stage::fmt;
 
 namespace {
-nlohmann::ordered_json num(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); }
-nlohmann::ordered_json fit_obj(const std::vector<std::string>& outs, const std::vector<double>& f) {
-  nlohmann::ordered_json o = nlohmann::ordered_json::object();
+using J = nlohmann::ordered_json;
+
+J num(double x) { return std::isfinite(x) ? J(x) : J(nullptr); }
+J fit_obj(const std::vector<std::string>& outs, const std::vector<double>& f) {
+  J o = J::object();
   for (std::size_t i = 0; i < f.size() && i < outs.size(); ++i) o[outs[i]] = num(f[i]);
   return o;
 }
-}  // namespace
 
-std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path) {
-  using J = nlohmann::ordered_json;
-  J j;
-  J params = J::object();
-  for (const auto& n : d.free_nominal) params[n] = num(d.nominal.parameter(n)->value);
-  j["nominal"]["parameters"] = params;
-  j["nominal"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_nominal_estimation);
-  j["nominal"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_nominal_validation);
-  j["nominal"]["fit_before_calibration"]["estimation"] = fit_obj(d.outputs, d.fit_start_estimation);
-  j["nominal"]["fit_before_calibration"]["validation"] = fit_obj(d.outputs, d.fit_start_validation);
+J varying_json(const VaryingParameter& v) {
+  J when = J::array();
+  for (const auto& w : v.when) when.push_back({w.first, w.second});
+  J traj = J::array();
+  for (const auto& sv : v.trajectory) traj.push_back({{"start", sv.start}, {"end", sv.end}, {"value", sv.value}});
+  J jumps = J::array();
+  for (const auto& jp : v.jumps) jumps.push_back({{"time", jp.first}, {"size", jp.second}});
+  return {{"name", v.name}, {"value", v.value}, {"range", {v.lo, v.hi}}, {"explained", v.explained}, {"when", when},
+          {"explained_squared", v.explained_squared}, {"bound", v.bound}, {"method", v.method}, {"jumps", jumps}, {"trajectory", traj}};
+}
+
+// Where the calibrated nominal fails: windows, regions, varying parameters, bands, error bound.
+J mismatch_json(const Diagnosis& d) {
   J windows = J::array();
   for (const auto& w : d.windows)
     windows.push_back({{"output", w.output}, {"start", w.start}, {"end", w.end}, {"rms", w.rms}, {"falsified", w.falsified}});
@@ -38,69 +42,87 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
     regions.push_back({{"description", r.description}, {"variable", r.variable}, {"residual_share", r.residual_share},
                        {"sample_share", r.sample_share}});
   J varying = J::array();
-  for (const auto& v : d.varying) {
-    J when = J::array();
-    for (const auto& w : v.when) when.push_back({w.first, w.second});
-    J traj = J::array();
-    for (const auto& sv : v.trajectory) traj.push_back({{"start", sv.start}, {"end", sv.end}, {"value", sv.value}});
-    J jumps = J::array();
-    for (const auto& jp : v.jumps) jumps.push_back({{"time", jp.first}, {"size", jp.second}});
-    varying.push_back({{"name", v.name}, {"value", v.value}, {"range", {v.lo, v.hi}}, {"explained", v.explained}, {"when", when},
-                       {"explained_squared", v.explained_squared}, {"bound", v.bound}, {"method", v.method}, {"jumps", jumps}, {"trajectory", traj}});
-  }
+  for (const auto& v : d.varying) varying.push_back(varying_json(v));
   J bands = J::array();
   for (const auto& b : d.bands) bands.push_back({{"output", b.output}, {"band_hz", {b.lo_hz, b.hi_hz}}, {"peak_hz", b.peak_hz}});
-  j["mismatch"]["windows"] = windows;
-  j["mismatch"]["regions"] = regions;
-  j["mismatch"]["varying_parameters"] = varying;
-  j["mismatch"]["frequency_band"] = bands;
   J bounds = J::object();
   for (std::size_t i = 0; i < d.error_bound.size(); ++i) bounds[d.outputs[i]] = d.error_bound[i];
-  j["mismatch"]["error_bound"] = bounds;
-  J effects = J::array();
-  for (const auto& e : d.effects) {
-    J ps = J::object();
-    for (const auto& p : e.parameters) {
-      J oe_delta = J::object();
-      for (std::size_t k = 0; k < p.oe_delta.size() && k < d.outputs.size(); ++k) oe_delta[d.outputs[k]] = num(p.oe_delta[k]);
-      const bool bounded = p.has_bounded_error_interval();
-      ps[p.name] = {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
-                    {"interval_kind", bounded ? "bounded-error interval: holds when |equation error| <= error_bound.equation_error "
-                                                "(an assumption); met with the declared min/max"
-                                              : "no bounded-error set could be built: only the declared min/max; see the estimates"},
-                    {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)},
-                    {"interval_equation_error_certified", p.has_ee ? J(p.ee_certified) : J(nullptr)},
-                    {"estimate_interval_output_error_linearised", {num(p.estimate_oe_lo), num(p.estimate_oe_hi)}},
-                    {"estimate_statistical_95", {num(p.estimate_stat_lo), num(p.estimate_stat_hi)}},
-                    {"role", p.role},
-                    {"error_bound", {{"output_error", oe_delta}, {"equation_error", p.has_ee ? num(p.ee_delta) : J(nullptr)}}}};
-    }
-    J rules = J::array();
-    for (const auto& r : e.rules)
-      rules.push_back({{"name", r.name}, {"value", num(r.value)}, {"threshold", r.threshold}, {"applies", r.applies}, {"passed", r.passed},
-                       {"rule", r.description}});
-    effects.push_back({{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence},
-                       {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}});
-  }
-  j["effects"] = effects;
-  auto noise_levels = [](const std::vector<OutputNoise>& levels) {
-    J noise = J::object();
-    for (const auto& n : levels)
-      noise[n.output] = {{"sigma", num(n.estimate.sigma)}, {"method", noise_method_name(n.estimate.method)},
-                         {"record", n.record}, {"model", n.model}, {"reason", n.estimate.reason},
-                         {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)}};
-    return noise;
-  };
-  j["noise_level"] = noise_levels(d.noise);              // the calibrated nominal's: the rules' floor
-  j["noise_level_final"] = noise_levels(d.noise_final);  // the final model's: reported
+  return {{"windows", windows}, {"regions", regions}, {"varying_parameters", varying}, {"frequency_band", bands},
+          {"error_bound", bounds}};
+}
+
+J parameter_json(const Diagnosis& d, const EffectParameter& p) {
+  J oe_delta = J::object();
+  for (std::size_t k = 0; k < p.oe_delta.size() && k < d.outputs.size(); ++k) oe_delta[d.outputs[k]] = num(p.oe_delta[k]);
+  const bool bounded = p.has_bounded_error_interval();
+  return {{"estimate", num(p.estimate)}, {"interval", {num(p.lo), num(p.hi)}},
+          {"interval_kind", bounded ? "bounded-error interval: holds when |equation error| <= error_bound.equation_error "
+                                      "(an assumption); met with the declared min/max"
+                                    : "no bounded-error set could be built: only the declared min/max; see the estimates"},
+          {"interval_equation_error", p.has_ee ? J{num(p.ee_lo), num(p.ee_hi)} : J(nullptr)},
+          {"interval_equation_error_certified", p.has_ee ? J(p.ee_certified) : J(nullptr)},
+          {"estimate_interval_output_error_linearised", {num(p.estimate_oe_lo), num(p.estimate_oe_hi)}},
+          {"estimate_statistical_95", {num(p.estimate_stat_lo), num(p.estimate_stat_hi)}},
+          {"role", p.role},
+          {"error_bound", {{"output_error", oe_delta}, {"equation_error", p.has_ee ? num(p.ee_delta) : J(nullptr)}}}};
+}
+
+J effect_json(const Diagnosis& d, const DiagnosedEffect& e) {
+  J ps = J::object();
+  for (const auto& p : e.parameters) ps[p.name] = parameter_json(d, p);
+  J rules = J::array();
+  for (const auto& r : e.rules)
+    rules.push_back({{"name", r.name}, {"value", num(r.value)}, {"threshold", r.threshold}, {"applies", r.applies}, {"passed", r.passed},
+                     {"rule", r.description}});
+  return {{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence},
+          {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}};
+}
+
+J noise_levels_json(const std::vector<OutputNoise>& levels) {
+  J noise = J::object();
+  for (const auto& n : levels)
+    noise[n.output] = {{"sigma", num(n.estimate.sigma)}, {"method", noise_method_name(n.estimate.method)},
+                       {"record", n.record}, {"model", n.model}, {"reason", n.estimate.reason},
+                       {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)}};
+  return noise;
+}
+
+J data_hypothesis_json(const Diagnosis& d) {
   const DataHypothesis& h = d.data_hypothesis;
-  j["data_hypothesis"] = {{"tested", h.tested}, {"found", h.found}, {"finding", h.finding}, {"note", h.note},
-                          {"inputs", h.inputs}, {"declared", h.declared}, {"alternative", h.alternative},
-                          {"ratio", h.tested ? num(h.ratio) : J(nullptr)},
-                          {"fit_declared", {{"estimation", fit_obj(d.outputs, h.fit_declared_estimation)},
-                                            {"validation", fit_obj(d.outputs, h.fit_declared_validation)}}},
-                          {"fit_alternative", {{"estimation", fit_obj(d.outputs, h.fit_alternative_estimation)},
-                                               {"validation", fit_obj(d.outputs, h.fit_alternative_validation)}}}};
+  return {{"tested", h.tested}, {"found", h.found}, {"finding", h.finding}, {"note", h.note},
+          {"inputs", h.inputs}, {"declared", h.declared}, {"alternative", h.alternative},
+          {"ratio", h.tested ? num(h.ratio) : J(nullptr)},
+          {"fit_declared", {{"estimation", fit_obj(d.outputs, h.fit_declared_estimation)},
+                            {"validation", fit_obj(d.outputs, h.fit_declared_validation)}}},
+          {"fit_alternative", {{"estimation", fit_obj(d.outputs, h.fit_alternative_estimation)},
+                               {"validation", fit_obj(d.outputs, h.fit_alternative_validation)}}}};
+}
+
+J residual_tests_json(const Diagnosis& d, const ResidualTests& t) {
+  J b = J::object();
+  for (std::size_t i = 0; i < t.bound.size() && i < d.outputs.size(); ++i) b[d.outputs[i]] = num(t.bound[i]);
+  return {{"falsified", t.falsified}, {"white", t.white}, {"worst_autocorrelation_z", num(t.worst_autocorrelation_z)},
+          {"white_threshold", num(t.white_threshold)}, {"independent", t.independent}, {"within_noise", t.within_noise()},
+          {"worst_z", num(t.worst_z)}, {"z_threshold", num(t.z_threshold)}, {"worst_signal", t.worst_signal}, {"bound", b}};
+}
+}  // namespace
+
+std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path) {
+  J j;
+  J params = J::object();
+  for (const auto& n : d.free_nominal) params[n] = num(d.nominal.parameter(n)->value);
+  j["nominal"]["parameters"] = params;
+  j["nominal"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_nominal_estimation);
+  j["nominal"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_nominal_validation);
+  j["nominal"]["fit_before_calibration"]["estimation"] = fit_obj(d.outputs, d.fit_start_estimation);
+  j["nominal"]["fit_before_calibration"]["validation"] = fit_obj(d.outputs, d.fit_start_validation);
+  j["mismatch"] = mismatch_json(d);
+  J effects = J::array();
+  for (const auto& e : d.effects) effects.push_back(effect_json(d, e));
+  j["effects"] = effects;
+  j["noise_level"] = noise_levels_json(d.noise);              // the calibrated nominal's: the rules' floor
+  j["noise_level_final"] = noise_levels_json(d.noise_final);  // the final model's: reported
+  j["data_hypothesis"] = data_hypothesis_json(d);
   j["augmented"]["model"] = augmented_path.empty() ? J(nullptr) : J(augmented_path);
   j["augmented"]["fit"]["estimation"] = fit_obj(d.outputs, d.fit_augmented_estimation);
   j["augmented"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_augmented_validation);
@@ -113,14 +135,7 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
   J sig = J::object();
   for (std::size_t i = 0; i < d.noise_sigma.size() && i < d.outputs.size(); ++i) sig[d.outputs[i]] = num(d.noise_sigma[i]);
   j["noise"] = {{"sigma", sig}, {"method", d.noise_note}};
-  auto tests = [&](const ResidualTests& t) {
-    J b = J::object();
-    for (std::size_t i = 0; i < t.bound.size() && i < d.outputs.size(); ++i) b[d.outputs[i]] = num(t.bound[i]);
-    return J{{"falsified", t.falsified}, {"white", t.white}, {"worst_autocorrelation_z", num(t.worst_autocorrelation_z)},
-             {"white_threshold", num(t.white_threshold)}, {"independent", t.independent}, {"within_noise", t.within_noise()},
-             {"worst_z", num(t.worst_z)}, {"z_threshold", num(t.z_threshold)}, {"worst_signal", t.worst_signal}, {"bound", b}};
-  };
-  j["residual_tests"] = {{"nominal", tests(d.nominal_tests)}, {"final", tests(d.final_tests)}};
+  j["residual_tests"] = {{"nominal", residual_tests_json(d, d.nominal_tests)}, {"final", residual_tests_json(d, d.final_tests)}};
   j["hypotheses"] = {{"screened", d.hypotheses_screened}, {"refined", d.hypotheses_refined}};
   j["nothing_missing"] = d.nothing_missing;
   j["bound_note"] = d.bound_note;
