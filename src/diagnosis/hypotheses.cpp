@@ -628,8 +628,8 @@ void say_round(const Context& c, const Round& r) {
 }
 
 // The sparsest explanation among the accepted: misfit (validation when there is one) x
-// tolerance^parameters; `best` is the best misfit. A hypothesis with more effects is picked over
-// an accepted one with fewer only if it passes the rules with that one as the baseline (700 066:
+// tolerance^parameters; `best` is the best misfit. A pair is picked over an accepted single law
+// that generalises one of its parts only if it passes the rules with that law as the baseline (700 066:
 // Coulomb + hysteresis at 14.9 % of the misfit was named over Stribeck alone at 15.4 %). Between
 // nested hypotheses the rules decide, not the parameter count: an accepted richer law has passed
 // them against the special case picked.
@@ -642,9 +642,18 @@ std::pair<std::size_t, std::size_t> pick_sparsest(const Context& c, const NoiseF
     for (const auto& part : parts_of(trials[i].cand)) p += part.effect == "time_delay" ? 1 : 0;
     return judged(i) * std::pow(c.options.sparsity_tolerance, p);
   };
+  // Rival explanations of the same place: `single` is the richer law of one of the pair's parts
+  // (Stribeck for Coulomb + hysteresis). An unrelated single law is left to the score.
+  auto generalises_a_part = [&](const Candidate& single, const Candidate& pair) {
+    if (!single.parts.empty()) return false;
+    for (const auto& part : parts_of(pair))
+      if (nests(single, part)) return true;
+    return false;
+  };
   auto beyond_fewer_effects = [&](std::size_t i) {
     for (std::size_t j : r.ok)
       if (parts_of(trials[j].cand).size() < parts_of(trials[i].cand).size() &&
+          generalises_a_part(trials[j].cand, trials[i].cand) &&
           !passes(check_rules(against(r, noise, trials[i], trials[j]), rules)))
         return false;
     return true;
