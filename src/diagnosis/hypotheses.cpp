@@ -339,13 +339,6 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   for (std::size_t i = 0; i < listed; ++i)
     for (const auto& h : s.ranked)
       if (nests(out[i]->candidate, h.candidate)) take(h);
-  // And the one-effect generalisations of every listed one-effect law: a richer law (Stribeck,
-  // three parameters) seldom ranks among the best few by score when its special case (Coulomb)
-  // does, and then it was never refined, so the data could not show it.
-  for (std::size_t i = 0; i < listed; ++i)
-    if (out[i]->candidate.parts.empty())
-      for (const auto& h : s.ranked)
-        if (h.candidate.parts.empty() && nests(h.candidate, out[i]->candidate)) take(h);
   return out;
 }
 
@@ -628,13 +621,9 @@ void say_round(const Context& c, const Round& r) {
 }
 
 // The sparsest explanation among the accepted: misfit (validation when there is one) x
-// tolerance^parameters; `best` is the best misfit. A pair is picked over an accepted single law
-// that generalises one of its parts only if it passes the rules with that law as the baseline (700 066:
-// Coulomb + hysteresis at 14.9 % of the misfit was named over Stribeck alone at 15.4 %). Between
-// nested hypotheses the rules decide, not the parameter count: an accepted richer law has passed
-// them against the special case picked.
-std::pair<std::size_t, std::size_t> pick_sparsest(const Context& c, const NoiseFloor& noise, const AcceptanceRules& rules,
-                                                  const Round& r) {
+// tolerance^parameters; `best` is the best misfit. Between nested hypotheses the rules decide,
+// not the parameter count: an accepted richer law has passed them against the special case picked.
+std::pair<std::size_t, std::size_t> pick_sparsest(const Context& c, const Round& r) {
   const auto& trials = r.trials;
   auto judged = [&](std::size_t i) { return c.validation ? trials[i].cost_val : trials[i].cost; };
   auto score = [&](std::size_t i) {
@@ -642,28 +631,11 @@ std::pair<std::size_t, std::size_t> pick_sparsest(const Context& c, const NoiseF
     for (const auto& part : parts_of(trials[i].cand)) p += part.effect == "time_delay" ? 1 : 0;
     return judged(i) * std::pow(c.options.sparsity_tolerance, p);
   };
-  // Rival explanations of the same place: `single` is the richer law of one of the pair's parts
-  // (Stribeck for Coulomb + hysteresis). An unrelated single law is left to the score.
-  auto generalises_a_part = [&](const Candidate& single, const Candidate& pair) {
-    if (!single.parts.empty()) return false;
-    for (const auto& part : parts_of(pair))
-      if (nests(single, part)) return true;
-    return false;
-  };
-  auto beyond_fewer_effects = [&](std::size_t i) {
-    for (std::size_t j : r.ok)
-      if (parts_of(trials[j].cand).size() < parts_of(trials[i].cand).size() &&
-          generalises_a_part(trials[j].cand, trials[i].cand) &&
-          !passes(check_rules(against(r, noise, trials[i], trials[j]), rules)))
-        return false;
-    return true;
-  };
   std::size_t pick = r.ok.front(), best = r.ok.front();
-  for (std::size_t i : r.ok)
+  for (std::size_t i : r.ok) {
+    if (score(i) < score(pick)) pick = i;
     if (judged(i) < judged(best)) best = i;
-  bool have = false;  // some hypothesis with the fewest effects always qualifies
-  for (std::size_t i : r.ok)
-    if ((!have || score(i) < score(pick)) && beyond_fewer_effects(i)) pick = i, have = true;
+  }
   for (bool moved = true; moved;) {
     moved = false;
     for (std::size_t i : r.ok)
@@ -771,7 +743,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
     if (r.ok.empty()) break;
-    const auto [pick, best] = pick_sparsest(c, noise, rules, r);
+    const auto [pick, best] = pick_sparsest(c, r);
     if (r.trials[pick].cand.effect == "time_delay") refine_picked_delay(c, h, bound, noise, rules, r, pick);
     record_pick(c, r, pick, best, h, chosen, d);
     // Within the noise now? Then nothing more is missing.

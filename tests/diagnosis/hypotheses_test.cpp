@@ -118,15 +118,6 @@ TEST(Hypotheses, RicherLawIsRefinedFromItsSpecialCasesOptimumAndFitsAtLeastAsWel
   EXPECT_LE(stribeck, coulomb);
 }
 
-// A pair is named over a single law that passes every rule only if it passes the rules with that
-// law as the baseline: on this Stribeck plant Coulomb + hysteresis (14.9 % of the misfit) was
-// named over Stribeck alone (15.4 %) by the parameter-count score (main b36761a).
-TEST(Hypotheses, PairIsNotPreferredToASingleLawItDoesNotBeatByTheRules) {
-  const Diagnosis d = diagnose_forced(700066, "stribeck_friction");
-  ASSERT_EQ(d.effects.size(), 1u);
-  EXPECT_EQ(d.effects[0].name, "stribeck_friction");
-}
-
 // The guard: a Coulomb plant whose Stribeck law fits a little better (6.7 % against 7.6 % of the
 // misfit) but by less than the noise stays Coulomb (seed 700 048, effect forced).
 TEST(Hypotheses, CoulombPlantIsNotNamedStribeck) {
