@@ -382,6 +382,23 @@ void screen_round(const Context& c, const HypothesisSearch& h, const std::vector
   r.list = shortlist(r.screening, opt.refine);
 }
 
+// A start with the hypothesis switched off: the current model's values, every new parameter at
+// its neutral value (its screened value where the neutral is irrelevant).
+Eigen::VectorXd switched_off_start(const ModelFile& model, const Candidate& cand, const ModelFile& current) {
+  Eigen::VectorXd p = values_of(model);
+  for (std::size_t q = 0; q < model.parameters.size(); ++q) {
+    const std::string& name = model.parameters[q].name;
+    const auto own = std::find(cand.parameters.begin(), cand.parameters.end(), name);
+    if (own != cand.parameters.end()) {
+      const double n = cand.neutral[static_cast<std::size_t>(own - cand.parameters.begin())];
+      if (!std::isnan(n)) p[static_cast<Eigen::Index>(q)] = n;
+    } else if (const auto* v = current.parameter(name)) {
+      p[static_cast<Eigen::Index>(q)] = v->value;
+    }
+  }
+  return p;
+}
+
 // The shortlist refined by output error beside the null hypothesis (the current model calibrated
 // with the same budget: a hypothesis must beat it, so that a better optimum of the old parameters
 // is not credited to a new effect). Sets the baseline; h.current takes the null's optimum.
@@ -412,6 +429,30 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
       r.cost_cur_val = t.cost_neutral_val;
       for (auto& q : h.current.parameters)
         if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
+    }
+  }
+}
+
+// A hypothesis that fits worse than the current model did not converge (switched off, it is the
+// current model): its starts, from the screening's linearisation, lay in another basin. It is
+// refined again from switched off, and that trial kept when it fits better.
+void refine_again_from_switched_off(const Context& c, const HypothesisSearch& h, Round& r) {
+  std::vector<std::size_t> worse;
+  std::vector<ToRefine> to_refine;
+  for (std::size_t i = 1; i < r.trials.size(); ++i)
+    if (!r.trials[i].ok || r.trials[i].cost > r.cost_cur) {
+      const Candidate& cand = r.list[i - 1]->candidate;
+      worse.push_back(i);
+      to_refine.push_back({&cand, {switched_off_start(cand.model, cand, h.current)}});
+    }
+  if (worse.empty()) return;
+  c.say("  " + std::to_string(worse.size()) + " fit worse than the current model: refined again from switched off");
+  std::vector<Trial> again = refine(c, to_refine, h.known_scales);
+  for (std::size_t n = 0; n < worse.size(); ++n) {
+    Trial& old = r.trials[worse[n]];
+    if (again[n].ok && (!old.ok || again[n].cost < old.cost)) {
+      again[n].screening_gain = old.screening_gain;
+      old = std::move(again[n]);
     }
   }
 }
@@ -752,6 +793,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     r.index = round;
     screen_round(c, h, chosen, bound, r, d);
     refine_round(c, h, r, d);
+    refine_again_from_switched_off(c, h, r);
     refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
