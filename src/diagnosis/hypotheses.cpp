@@ -487,7 +487,8 @@ Eigen::VectorXd start_from_pair(const Candidate& alone, const Candidate& part, c
 // A pair one of whose members does nothing at the pair's optimum (switching it off costs less than
 // the own-term share) found the other member alone at a point that member's own starts did not
 // reach (e.g. a delay whose starts stopped in another basin): that member is refined again from
-// the pair's optimum and judged as itself. Its trial replaces the earlier one when it fits better.
+// the pair's optimum and judged as itself, beside its earlier trial if it had one (the two optima
+// can differ on validation, which the rules judge; 5 000 932).
 void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d) {
   std::vector<const ScreenedHypothesis*> again;  // each once, with every pair's optimum as a start
   std::vector<ToRefine> to_refine;
@@ -520,13 +521,8 @@ void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, do
   for (std::size_t n = 0; n < trials.size(); ++n) {
     if (!trials[n].ok) continue;
     trials[n].screening_gain = again[n]->gain;
-    const auto listed = std::find(r.list.begin(), r.list.end(), again[n]);
-    if (listed == r.list.end()) {
-      r.list.push_back(again[n]);
-      r.trials.push_back(std::move(trials[n]));
-    } else if (Trial& old = r.trials[static_cast<std::size_t>(listed - r.list.begin()) + 1]; !old.ok || trials[n].cost < old.cost) {
-      old = std::move(trials[n]);
-    }
+    r.list.push_back(again[n]);
+    r.trials.push_back(std::move(trials[n]));
   }
 }
 
