@@ -382,23 +382,6 @@ void screen_round(const Context& c, const HypothesisSearch& h, const std::vector
   r.list = shortlist(r.screening, opt.refine);
 }
 
-// A start with the hypothesis switched off: the current model's values, every new parameter at
-// its neutral value (its screened value where the neutral is irrelevant).
-Eigen::VectorXd switched_off_start(const ModelFile& model, const Candidate& cand, const ModelFile& current) {
-  Eigen::VectorXd p = values_of(model);
-  for (std::size_t q = 0; q < model.parameters.size(); ++q) {
-    const std::string& name = model.parameters[q].name;
-    const auto own = std::find(cand.parameters.begin(), cand.parameters.end(), name);
-    if (own != cand.parameters.end()) {
-      const double n = cand.neutral[static_cast<std::size_t>(own - cand.parameters.begin())];
-      if (!std::isnan(n)) p[static_cast<Eigen::Index>(q)] = n;
-    } else if (const auto* v = current.parameter(name)) {
-      p[static_cast<Eigen::Index>(q)] = v->value;
-    }
-  }
-  return p;
-}
-
 // The shortlist refined by output error beside the null hypothesis (the current model calibrated
 // with the same budget: a hypothesis must beat it, so that a better optimum of the old parameters
 // is not credited to a new effect). Sets the baseline; h.current takes the null's optimum.
@@ -433,30 +416,6 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   }
 }
 
-// A hypothesis that fits worse than the current model did not converge (switched off, it is the
-// current model): its starts, from the screening's linearisation, lay in another basin. It is
-// refined again from switched off, and that trial kept when it fits better.
-void refine_again_from_switched_off(const Context& c, const HypothesisSearch& h, Round& r) {
-  std::vector<std::size_t> worse;
-  std::vector<ToRefine> to_refine;
-  for (std::size_t i = 1; i < r.trials.size(); ++i)
-    if (!r.trials[i].ok || r.trials[i].cost > r.cost_cur) {
-      const Candidate& cand = r.list[i - 1]->candidate;
-      worse.push_back(i);
-      to_refine.push_back({&cand, {switched_off_start(cand.model, cand, h.current)}});
-    }
-  if (worse.empty()) return;
-  c.say("  " + std::to_string(worse.size()) + " fit worse than the current model: refined again from switched off");
-  std::vector<Trial> again = refine(c, to_refine, h.known_scales);
-  for (std::size_t n = 0; n < worse.size(); ++n) {
-    Trial& old = r.trials[worse[n]];
-    if (again[n].ok && (!old.ok || again[n].cost < old.cost)) {
-      again[n].screening_gain = old.screening_gain;
-      old = std::move(again[n]);
-    }
-  }
-}
-
 // The single hypothesis of `part` (a pair's member) in the screening, if it was screened alone.
 const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& part) {
   for (const auto& x : s.ranked)
@@ -485,10 +444,10 @@ Eigen::VectorXd start_from_pair(const Candidate& alone, const Candidate& part, c
 }
 
 // A pair one of whose members does nothing at the pair's optimum (switching it off costs less than
-// the own-term share) found the other member alone at a point that member's own starts did not
-// reach (e.g. a delay whose starts stopped in another basin): that member is refined again from
-// the pair's optimum and judged as itself, beside its earlier trial if it had one (the two optima
-// can differ on validation, which the rules judge; 5 000 932).
+// the own-term share) found the other member alone. When that fits better than the member's own
+// trial (or it had none), the pair reached a point the member's own starts missed (e.g. a delay
+// whose starts stopped in another basin): the member is refined again from the pair's optimum and
+// judged as itself, beside its earlier trial (the two can differ on validation; 5 000 932).
 void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d) {
   std::vector<const ScreenedHypothesis*> again;  // each once, with every pair's optimum as a start
   std::vector<ToRefine> to_refine;
@@ -504,6 +463,12 @@ void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, do
       if (!(share(k) < min_own_term) || share(1 - k) < min_own_term) continue;  // NaN: cannot be switched off
       const ScreenedHypothesis* alone = screened_alone(r.screening, kept);
       if (!alone) continue;
+      // Refined alone already, to a point that fits at least as well: nothing was missed.
+      const auto listed = std::find(r.list.begin(), r.list.end(), alone);
+      if (listed != r.list.end()) {
+        const Trial& own = r.trials[static_cast<std::size_t>(listed - r.list.begin()) + 1];
+        if (own.ok && own.cost <= t.part_neutral[k]) continue;
+      }
       auto at = static_cast<std::size_t>(std::find(again.begin(), again.end(), alone) - again.begin());
       if (at == again.size()) {
         again.push_back(alone);
@@ -789,7 +754,6 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     r.index = round;
     screen_round(c, h, chosen, bound, r, d);
     refine_round(c, h, r, d);
-    refine_again_from_switched_off(c, h, r);
     refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
