@@ -477,6 +477,81 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   }
 }
 
+// The single hypothesis of `part` (a pair's member) in the screening, if it was screened alone.
+const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& part) {
+  for (const auto& x : s.ranked)
+    if (x.candidate.parts.empty() && x.candidate.effect == part.effect && x.candidate.equation == part.equation &&
+        x.candidate.delay_samples == part.delay_samples)
+      return &x;
+  return nullptr;
+}
+
+// `alone`'s parameter vector at the pair's optimum: its own parameters from `part`'s (by catalogue
+// role: the pair may have named them apart), the model's from the pair's model (by name).
+Eigen::VectorXd start_from_pair(const Candidate& alone, const Candidate& part, const ModelFile& pair_model) {
+  Eigen::VectorXd p = values_of(alone.model);
+  for (std::size_t q = 0; q < alone.model.parameters.size(); ++q) {
+    std::string name = alone.model.parameters[q].name;
+    const auto own = std::find(alone.parameters.begin(), alone.parameters.end(), name);
+    if (own != alone.parameters.end()) {
+      const std::string& role = alone.roles[static_cast<std::size_t>(own - alone.parameters.begin())];
+      const auto in_part = std::find(part.roles.begin(), part.roles.end(), role);
+      if (in_part == part.roles.end()) continue;
+      name = part.parameters[static_cast<std::size_t>(in_part - part.roles.begin())];
+    }
+    if (const auto* v = pair_model.parameter(name)) p[static_cast<Eigen::Index>(q)] = v->value;
+  }
+  return p;
+}
+
+// A pair one of whose members does nothing at the pair's optimum (switching it off costs less than
+// the own-term share) found the other member alone. When that fits better than the member's own
+// trial (or it had none), the pair reached a point the member's own starts missed (e.g. a delay
+// whose starts stopped in another basin): the member is refined again from the pair's optimum and
+// judged as itself, beside its earlier trial (the two can differ on validation; 5 000 932).
+void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d) {
+  std::vector<const ScreenedHypothesis*> again;  // each once, with every pair's optimum as a start
+  std::vector<ToRefine> to_refine;
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    if (!t.ok || t.part_neutral.size() != 2) continue;
+    auto share = [&](std::size_t k) {
+      const double off = t.part_neutral[k];
+      return std::isfinite(off) && off > 0 ? (off - t.cost) / off : kNaN;
+    };
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Candidate& kept = t.cand.parts[1 - k];
+      if (!(share(k) < min_own_term) || share(1 - k) < min_own_term) continue;  // NaN: cannot be switched off
+      const ScreenedHypothesis* alone = screened_alone(r.screening, kept);
+      if (!alone) continue;
+      // Refined alone already, to a point that fits at least as well: nothing was missed.
+      const auto listed = std::find(r.list.begin(), r.list.end(), alone);
+      if (listed != r.list.end()) {
+        const Trial& own = r.trials[static_cast<std::size_t>(listed - r.list.begin()) + 1];
+        if (own.ok && own.cost <= t.part_neutral[k]) continue;
+      }
+      auto at = static_cast<std::size_t>(std::find(again.begin(), again.end(), alone) - again.begin());
+      if (at == again.size()) {
+        again.push_back(alone);
+        to_refine.push_back({&alone->candidate, {}});
+      }
+      to_refine[at].starts.push_back(start_from_pair(alone->candidate, kept, t.model));
+    }
+  }
+  if (again.empty()) return;
+  std::string names;
+  for (const auto* alone : again) names += (names.empty() ? "" : ", ") + alone->candidate.effect + " (" + alone->candidate.equation + ")";
+  c.say("  refining from a pair's optimum where its other member does nothing: " + names);
+  std::vector<Trial> trials = refine(c, to_refine, h.known_scales);
+  d.hypotheses_refined += static_cast<int>(trials.size());
+  for (std::size_t n = 0; n < trials.size(); ++n) {
+    if (!trials[n].ok) continue;
+    trials[n].screening_gain = again[n]->gain;
+    r.list.push_back(again[n]);
+    r.trials.push_back(std::move(trials[n]));
+  }
+}
+
 HypothesisEvidence evidence_of(const Round& r, const NoiseFloor& noise, const Trial& t) {
   HypothesisEvidence e;
   e.cost_null = r.cost_cur;
@@ -740,6 +815,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     r.index = round;
     screen_round(c, h, chosen, bound, r, d);
     refine_round(c, h, r, d);
+    refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
     if (r.ok.empty()) break;
