@@ -342,6 +342,42 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   return out;
 }
 
+// The starts of a one-effect richer law at the calibrated optimum of a one-effect special case of
+// it: the special case's values (the model's and its own, matched by role), the parameters fixed
+// on the way at their fixed value, the remaining nonlinear ones on the richer law's grid. At such a
+// start the richer law is the special case, so its calibration cannot end worse than it. Empty
+// when a parameter of the richer law is none of these (e.g. Fc_pos, Fc_neg of an asymmetric law:
+// an equality, not a value).
+std::vector<Eigen::VectorXd> starts_at_special_case(const Candidate& richer, const Trial& special) {
+  Fixed fixed;
+  if (!richer.parts.empty() || !special.cand.parts.empty() || !special.ok || !nests(richer, special.cand, &fixed)) return {};
+  ModelFile m = richer.model;
+  for (auto& q : m.parameters)
+    if (const auto* sq = special.model.parameter(q.name)) q.value = sq->value;  // the model's own
+  std::vector<std::string> on_grid;  // the richer law's nonlinear parameters, in grid order
+  for (std::size_t k = 0; k < richer.parameters.size(); ++k) {
+    const std::string& name = richer.parameters[k];
+    const auto f = std::find_if(fixed.begin(), fixed.end(), [&](const auto& x) { return x.first == name; });
+    const auto role = std::find(special.cand.roles.begin(), special.cand.roles.end(), richer.roles[k]);
+    if (f != fixed.end()) m.parameter(name)->value = f->second;
+    else if (role != special.cand.roles.end())
+      m.parameter(name)->value = special.model.parameter(special.cand.parameters[static_cast<std::size_t>(role - special.cand.roles.begin())])->value;
+    else if (!richer.linear[k]) { /* on the grid below */ }
+    else return {};
+    if (!richer.linear[k]) on_grid.push_back(name);
+  }
+  std::vector<Eigen::VectorXd> starts;
+  for (const auto& g : richer.grid) {
+    if (g.size() != on_grid.size()) return {};
+    for (std::size_t k = 0; k < g.size(); ++k)
+      if (std::find_if(fixed.begin(), fixed.end(), [&](const auto& x) { return x.first == on_grid[k]; }) == fixed.end())
+        m.parameter(on_grid[k])->value = g[k];
+    starts.push_back(values_of(m));
+  }
+  if (starts.empty()) starts.push_back(values_of(m));
+  return starts;
+}
+
 // ---- one round of the search, stage by stage
 
 // What one round of the greedy search carries from stage to stage.
@@ -355,6 +391,30 @@ struct Round {
   std::vector<std::size_t> ok;                   // trials that pass every rule
   std::map<std::size_t, std::string> beats;      // a richer law kept: the special cases it beat
 };
+
+// A richer law refined from the screening's starts can end in a worse basin than its special case
+// (700 067: Stribeck 4.4 % of the misfit, Coulomb 4.3 %), though it contains it. Each one-effect
+// richer law in the round is refined again from the optimum of each special case refined beside
+// it (starts_at_special_case), and keeps the better of the two results.
+void continue_from_special_cases(const Context& c, const HypothesisSearch& h, Round& r) {
+  std::vector<std::size_t> which;
+  std::vector<ToRefine> again;
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    std::vector<Eigen::VectorXd> starts;
+    for (std::size_t j = 1; j < r.trials.size(); ++j)
+      if (j != i)
+        for (auto& s : starts_at_special_case(r.list[i - 1]->candidate, r.trials[j])) starts.push_back(std::move(s));
+    if (starts.empty()) continue;
+    which.push_back(i);
+    again.push_back({&r.list[i - 1]->candidate, std::move(starts)});
+  }
+  if (again.empty()) return;
+  const std::vector<Trial> continued = refine(c, again, h.known_scales);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    Trial& t = r.trials[which[k]];
+    if (continued[k].ok && (!t.ok || continued[k].cost < t.cost)) t = continued[k];
+  }
+}
 
 AcceptanceRules rules_of(const DiagnosisOptions& opt) {
   AcceptanceRules rules;
@@ -394,6 +454,7 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   std::vector<ToRefine> to_refine{{&null, {values_of(h.current)}}};
   for (const auto* l : r.list) to_refine.push_back({&l->candidate, l->starts});
   r.trials = refine(c, to_refine, h.known_scales);
+  continue_from_special_cases(c, h, r);
   c.say("  refined; judging them by the acceptance rules");
   for (std::size_t i = 1; i < r.trials.size(); ++i) r.trials[i].screening_gain = r.list[i - 1]->gain;
   d.hypotheses_refined += static_cast<int>(r.list.size());
