@@ -396,10 +396,20 @@ void sensor_candidates(const Context& k, std::size_t j) {
     k.out.push_back(std::move(b.c));
   };
   if (!k.excluded("output_saturation")) {
+    // Clipped at both ends, or at one: a limit the estimation record does not reach is not seen
+    // there and would stay at the record's edge, clipping a validation record that goes further.
     Builder b(k.model, "output_saturation", y);
     const std::string a = b.add("y_lo", lo, range, false, -kHuge), c = b.add("y_hi", hi, range, false, kHuge);
     b.c.grid.push_back({lo, hi});
     sensor(b, "_sensor", "min(max(" + y + ", " + a + "), " + c + ")");
+    Builder up(k.model, "output_saturation", y);
+    const std::string u = up.add("y_hi", hi, range, false, kHuge);
+    up.c.grid.push_back({hi});
+    sensor(up, "_sensor", "min(" + y + ", " + u + ")");
+    Builder down(k.model, "output_saturation", y);
+    const std::string d = down.add("y_lo", lo, range, false, -kHuge);
+    down.c.grid.push_back({lo});
+    sensor(down, "_sensor", "max(" + y + ", " + d + ")");
   }
   if (!k.excluded("hysteresis")) {
     Builder b(k.model, "hysteresis", y);
