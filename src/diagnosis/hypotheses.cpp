@@ -342,6 +342,25 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   return out;
 }
 
+// `target`'s model at another candidate's calibrated point: the model's parameters by name from
+// `source_model`, `target`'s own by catalogue role from `source`'s (the two may name them apart);
+// an own parameter whose role `source` lacks keeps `target`'s value.
+ModelFile mapped_by_role(const Candidate& target, const Candidate& source, const ModelFile& source_model) {
+  ModelFile m = target.model;
+  for (auto& q : m.parameters) {
+    std::string name = q.name;
+    const auto own = std::find(target.parameters.begin(), target.parameters.end(), name);
+    if (own != target.parameters.end()) {
+      const std::string& role = target.roles[static_cast<std::size_t>(own - target.parameters.begin())];
+      const auto in_source = std::find(source.roles.begin(), source.roles.end(), role);
+      if (in_source == source.roles.end()) continue;
+      name = source.parameters[static_cast<std::size_t>(in_source - source.roles.begin())];
+    }
+    if (const auto* v = source_model.parameter(name)) q.value = v->value;
+  }
+  return m;
+}
+
 // The starts of a one-effect richer law at the calibrated optimum of a one-effect special case of
 // it: the special case's values (the model's and its own, matched by role), the parameters fixed
 // on the way at their fixed value, the remaining nonlinear ones on the richer law's grid. At such a
@@ -351,20 +370,15 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
 std::vector<Eigen::VectorXd> starts_at_special_case(const Candidate& richer, const Trial& special) {
   Fixed fixed;
   if (!richer.parts.empty() || !special.cand.parts.empty() || !special.ok || !nests(richer, special.cand, &fixed)) return {};
-  ModelFile m = richer.model;
-  for (auto& q : m.parameters)
-    if (const auto* sq = special.model.parameter(q.name)) q.value = sq->value;  // the model's own
+  ModelFile m = mapped_by_role(richer, special.cand, special.model);
   std::vector<std::string> on_grid;  // the richer law's nonlinear parameters, in grid order
   for (std::size_t k = 0; k < richer.parameters.size(); ++k) {
     const std::string& name = richer.parameters[k];
     const auto f = std::find_if(fixed.begin(), fixed.end(), [&](const auto& x) { return x.first == name; });
-    const auto role = std::find(special.cand.roles.begin(), special.cand.roles.end(), richer.roles[k]);
+    const bool mapped = std::find(special.cand.roles.begin(), special.cand.roles.end(), richer.roles[k]) != special.cand.roles.end();
     if (f != fixed.end()) m.parameter(name)->value = f->second;
-    else if (role != special.cand.roles.end())
-      m.parameter(name)->value = special.model.parameter(special.cand.parameters[static_cast<std::size_t>(role - special.cand.roles.begin())])->value;
-    else if (!richer.linear[k]) { /* on the grid below */ }
-    else return {};
-    if (!richer.linear[k]) on_grid.push_back(name);
+    else if (!mapped && richer.linear[k]) return {};  // neither fixed nor a value of the special case's
+    if (!richer.linear[k]) on_grid.push_back(name);  // set on the grid below unless fixed
   }
   std::vector<Eigen::VectorXd> starts;
   for (const auto& g : richer.grid) {
@@ -486,24 +500,6 @@ const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& pa
   return nullptr;
 }
 
-// `alone`'s parameter vector at the pair's optimum: its own parameters from `part`'s (by catalogue
-// role: the pair may have named them apart), the model's from the pair's model (by name).
-Eigen::VectorXd start_from_pair(const Candidate& alone, const Candidate& part, const ModelFile& pair_model) {
-  Eigen::VectorXd p = values_of(alone.model);
-  for (std::size_t q = 0; q < alone.model.parameters.size(); ++q) {
-    std::string name = alone.model.parameters[q].name;
-    const auto own = std::find(alone.parameters.begin(), alone.parameters.end(), name);
-    if (own != alone.parameters.end()) {
-      const std::string& role = alone.roles[static_cast<std::size_t>(own - alone.parameters.begin())];
-      const auto in_part = std::find(part.roles.begin(), part.roles.end(), role);
-      if (in_part == part.roles.end()) continue;
-      name = part.parameters[static_cast<std::size_t>(in_part - part.roles.begin())];
-    }
-    if (const auto* v = pair_model.parameter(name)) p[static_cast<Eigen::Index>(q)] = v->value;
-  }
-  return p;
-}
-
 // A pair one of whose members does nothing at the pair's optimum (switching it off costs less than
 // the own-term share) found the other member alone. When that fits better than the member's own
 // trial (or it had none), the pair reached a point the member's own starts missed (e.g. a delay
@@ -535,7 +531,7 @@ void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, do
         again.push_back(alone);
         to_refine.push_back({&alone->candidate, {}});
       }
-      to_refine[at].starts.push_back(start_from_pair(alone->candidate, kept, t.model));
+      to_refine[at].starts.push_back(values_of(mapped_by_role(alone->candidate, kept, t.model)));
     }
   }
   if (again.empty()) return;
