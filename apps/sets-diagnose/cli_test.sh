@@ -36,6 +36,16 @@ check "data: a time of day" 1 "time.csv: line 101, column 1 \(\"u\"\): not a num
 check "data: binary garbage" 1 "garbage.csv: line 101, column 1" -- "$app" --model "$dir/model.json" --data "$dir/garbage.csv" --quiet
 check_printable "binary garbage is escaped in the message"
 
+# A rate written with the wrong sign (x grows as e^(40 t): no longer finite within the 20 s record):
+# the file's values have no fit, the other starts are calibrated; with the rate fixed there is no
+# other start, and the numerical failure exits 3 naming the time.
+sed 's/"a": {"value": 1.0, "min": 0.1, "max": 10}/"a": -40.0/' "$dir/model.json" >"$dir/unstable.json"
+check "file values that blow up: calibrated from the other starts" 0 "file values, estimation +y not available" -- \
+  "$app" --model "$dir/unstable.json" --data "$dir/good.csv" --quiet
+sed 's/"a": {"value": 1.0, "min": 0.1, "max": 10}/"a": {"value": -40.0, "fixed": true}/' "$dir/model.json" >"$dir/fixed.json"
+check "file values that blow up, nothing free: numerical failure" 3 "from any start.*blew up at t = " -- \
+  "$app" --model "$dir/fixed.json" --data "$dir/good.csv" --quiet
+
 # Output paths are checked before the work: nothing is computed, nothing written.
 mkdir "$dir/k"
 check "bad --json with a good --report" 1 "--json .*does not exist" -- \

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <sstream>
 
 #include "diagnosis/stages.hpp"
+#include "sets/core/error.hpp"
 #include "sets/diagnosis/equation_error.hpp"
 #include "sets/numeric/worker_threads.hpp"
 
@@ -93,6 +95,39 @@ CalibrationResult calibrate_from(const Context& c, const Eigen::VectorXd& start,
   return again;
 }
 
+// Why `model` cannot be simulated at `p` over `sim`'s record ("the simulation blew up at t = ... s
+// (v is no longer finite)"), empty when it can; `outputs` gets the simulated outputs.
+std::string simulation_failure(const ModelFile& model, const Simulator& sim, const Eigen::VectorXd& p, Eigen::MatrixXd& outputs) {
+  try {
+    outputs = sim.simulate(p).outputs;
+    return "";
+  } catch (const NumericalError& e) {
+    const std::string what = e.what(), prefix = model.source + ": ";
+    return what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what;
+  }
+}
+
+// The fits of the file's values on both records. A nominal written by an engineer can be unstable
+// at its file's values (a sign, a damping too small) while its structure is fine: then the fits are
+// NaN ("not available"), d.fit_start_note says why, and the other starts are calibrated.
+CalibrationResult fits_at_file_values(const Context& c, const Eigen::VectorXd& p0, Diagnosis& d) {
+  CalibrationResult at_file;
+  Eigen::MatrixXd y;
+  const std::string failed = simulation_failure(c.model, c.exact, p0, y);
+  const std::size_t outputs = static_cast<std::size_t>(c.exact.measured().cols());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  d.fit_start_estimation = failed.empty() ? fits(c.exact.measured(), y) : std::vector<double>(outputs, nan);
+  at_file.ok = failed.empty();
+  at_file.cost = at_file.ok ? cost_of(d.fit_start_estimation) : nan;
+  if (!failed.empty()) d.fit_start_note = "the file's values cannot be simulated over the estimation record: " + failed;
+  if (!c.validation) return at_file;
+  const std::string failed_val = failed.empty() ? simulation_failure(c.model, *c.exact_validation, p0, y) : failed;
+  d.fit_start_validation = failed_val.empty() ? fits(c.exact_validation->measured(), y) : std::vector<double>(outputs, nan);
+  if (failed.empty() && !failed_val.empty())
+    d.fit_start_note = "the file's values cannot be simulated over the validation record: " + failed_val;
+  return at_file;
+}
+
 }  // namespace
 
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
@@ -100,16 +135,10 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   const Eigen::Index N = Y.rows();
   c.say("simulating the nominal model");
   const Eigen::VectorXd p0 = values_of(c.model);
-  CalibrationResult at_file;
-  {
-    SimulationResult r = c.exact.simulate(p0);  // throws with the time if it blows up
-    d.fit_start_estimation = fits(Y, r.outputs);
-    at_file.ok = r.outputs.allFinite();
-    at_file.cost = cost_of(d.fit_start_estimation);
-    if (c.validation)
-      d.fit_start_validation = fits(c.exact_validation->measured(), c.exact_validation->simulate(p0).outputs);
-  }
+  const CalibrationResult at_file = fits_at_file_values(c, p0, d);
+  if (!at_file.ok) c.say(d.fit_start_note + "; calibrating from the other starts");
   NominalFit n;
+  n.file_values_simulated = at_file.ok;
   n.free = c.fast.free_parameters();
   for (int i : n.free) d.free_nominal.push_back(c.model.parameters[static_cast<std::size_t>(i)].name);
   c.say("calibrating the nominal model's free parameters from several starts (" + std::to_string(c.options.screening_substeps) +
@@ -133,6 +162,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
     }
   }
   std::ostringstream note;
+  if (!d.fit_start_note.empty()) note << d.fit_start_note << "; ";
   note << "calibrated from " << starts.size() << (starts.size() == 1 ? " start" : " starts") << ":";
   // The starts are independent: one worker job each, with its own simulators (a Simulator is not
   // shared between threads); notes and choice in start order, so the result is the serial one.
@@ -155,6 +185,8 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
     worst_cost = std::max(worst_cost, r.cost);
     if (r.cost < best_cost) best_cost = r.cost, n.calibration = r;
   }
+  if (!n.calibration.ok && !at_file.ok)
+    throw NumericalError(c.model.source + ": the nominal model cannot be simulated over the record from any start (" + note.str() + ")");
   if (!n.calibration.ok) {
     n.calibration = evaluate(c.exact, p0);
     if (!n.free.empty()) note << " the nominal calibration did not converge from any start: the file's values are used;";

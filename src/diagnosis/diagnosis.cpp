@@ -89,17 +89,23 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // the file's values may blow up on them (RK4 outside its stability region). Then the step is
   // chosen again at the calibrated values, finer. (Not for a mere loss of precision: the screening
   // optima are refined with the final substeps anyway, and Silverbox's screening would double.)
+  // When the file's values could not be simulated, no step was chosen at them (the final one was
+  // used): it is chosen at the calibrated values.
   int sub = opt.screening_substeps;
-  if (!evaluate(fast, nominal.calibration.parameters).ok)
+  const bool chosen_at_calibrated = options.screening_substeps <= 0 && !nominal.file_values_simulated;
+  if (chosen_at_calibrated)
+    sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps);
+  else if (!evaluate(fast, nominal.calibration.parameters).ok)
     sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps, sub + 1);
-  std::unique_ptr<Simulator> finer;
-  if (sub > opt.screening_substeps) {
-    say("the calibrated nominal needs a finer screening step: " + std::to_string(sub) + " RK4 substeps instead of " +
-        std::to_string(opt.screening_substeps));
+  std::unique_ptr<Simulator> other_step;
+  if (sub != opt.screening_substeps) {
+    say(std::string(chosen_at_calibrated ? "the screening step chosen at the calibrated nominal (the file's values blow up): "
+                                         : "the calibrated nominal needs a finer screening step: ") +
+        std::to_string(sub) + " RK4 substeps instead of " + std::to_string(opt.screening_substeps));
     opt.screening_substeps = sub;
-    finer = std::make_unique<Simulator>(model, est, SimulationOptions{sub});
+    other_step = std::make_unique<Simulator>(model, est, SimulationOptions{sub});
   }
-  const Context c{model, est, val, opt, exact, finer ? *finer : fast, exact_val.get(), say};
+  const Context c{model, est, val, opt, exact, other_step ? *other_step : fast, exact_val.get(), say};
   const NoiseFloor noise = noise_floor(c, nominal, d);
   d.noise_sigma = noise.sigma;
   for (const auto& n : d.noise)

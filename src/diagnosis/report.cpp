@@ -116,6 +116,7 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
   j["nominal"]["fit"]["validation"] = fit_obj(d.outputs, d.fit_nominal_validation);
   j["nominal"]["fit_before_calibration"]["estimation"] = fit_obj(d.outputs, d.fit_start_estimation);
   j["nominal"]["fit_before_calibration"]["validation"] = fit_obj(d.outputs, d.fit_start_validation);
+  j["nominal"]["fit_before_calibration_note"] = d.fit_start_note;  // why a fit above is null
   j["mismatch"] = mismatch_json(d);
   J effects = J::array();
   for (const auto& e : d.effects) effects.push_back(effect_json(d, e));
@@ -147,11 +148,13 @@ std::string diagnosis_text(const Diagnosis& d) {
   std::ostringstream o;
   auto fitline = [&](const char* label, const std::vector<double>& f) {
     o << "  " << std::left << std::setw(34) << label;
-    for (std::size_t i = 0; i < f.size(); ++i) o << "  " << d.outputs[i] << " " << fixed1(f[i]) << " %";
+    for (std::size_t i = 0; i < f.size(); ++i)
+      o << "  " << d.outputs[i] << " " << (std::isnan(f[i]) ? "not available" : fixed1(f[i]) + " %");
     o << "\n";
   };
   o << "Fit per output (100 (1 - |y - yhat| / |y - mean y|)):\n";
   fitline("nominal, file values, estimation", d.fit_start_estimation);
+  if (!d.fit_start_note.empty()) o << "  (" << d.fit_start_note << ")\n";
   fitline("nominal, calibrated, estimation", d.fit_nominal_estimation);
   if (d.has_validation) fitline("nominal, calibrated, validation", d.fit_nominal_validation);
   o << "Calibrated nominal parameters:";

@@ -82,7 +82,10 @@ void fit_table(std::ostringstream& o, const J& j, const std::vector<std::string>
     row("nominal, calibrated", j["nominal"]["fit"]["validation"], "validation");
     if (!j["effects"].empty()) row("augmented", j["augmented"]["fit"]["validation"], "validation");
   }
-  o << "</table>\n<p class=\"note\">fit = 100 (1 &minus; &Vert;y &minus; &#375;&Vert; / &Vert;y &minus; mean y&Vert;)</p>\n";
+  o << "</table>\n<p class=\"note\">fit = 100 (1 &minus; &Vert;y &minus; &#375;&Vert; / &Vert;y &minus; mean y&Vert;)";
+  const std::string why = j["nominal"].value("fit_before_calibration_note", "");
+  if (!why.empty()) o << "; file values &ndash;: " << escape(why);
+  o << "</p>\n";
 }
 
 void effects_section(std::ostringstream& o, const J& j, const ModelFile& model) {

@@ -133,7 +133,9 @@ std::string fmt(double x, int prec) {
 }
 std::string fixed1(double x) {
   std::ostringstream os;
-  os << std::fixed << std::setprecision(1) << x;
+  // A model far off can fit at -1e44 %: its 45 digits say nothing more than three do.
+  if (std::abs(x) >= 1e6) os << std::setprecision(3) << x;
+  else os << std::fixed << std::setprecision(1) << x;
   return os.str();
 }
 

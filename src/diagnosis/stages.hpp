@@ -98,9 +98,11 @@ struct NominalFit {
   SimulationResult simulation;         // calibrated, final substeps, estimation record
   Eigen::MatrixXd validation_outputs;  // calibrated, final substeps, validation record (empty without)
   double cost = 0;                     // cost_of the calibrated fits (final substeps)
+  bool file_values_simulated = true;   // false: the file's values blow up on the estimation record
 };
-/// Fits of the file's values, then the calibrated nominal; fills d.fit_start_*, d.free_nominal,
-/// d.nominal and d.fit_nominal_*.
+/// Fits of the file's values (NaN and d.fit_start_note when they blow up: the other starts are
+/// calibrated), then the calibrated nominal; fills d.fit_start_*, d.free_nominal, d.nominal and
+/// d.fit_nominal_*. NumericalError when the file's values blow up and no start can be simulated.
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
 
 // ---- noise_floor.cpp

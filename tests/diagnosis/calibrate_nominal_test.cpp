@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "sets/core/error.hpp"
 #include "sets/data/simulation.hpp"
 #include "sets/diagnosis/calibration.hpp"
 #include "sets/diagnosis/diagnosis.hpp"
@@ -112,4 +113,55 @@ TEST(CalibrateNominal, OptimumOfTheCoarseStepThatDivergesAtTheFineStepIsRejected
   ASSERT_EQ(d.noise.size(), 1u);
   EXPECT_NEAR(d.noise[0].estimate.sigma / p.noise_sigma[0], 1.0, 0.5);
   EXPECT_NE(d.nominal_note.find("calibrated again"), std::string::npos) << d.nominal_note;
+}
+
+namespace {
+
+// x' = v, v' = u - k x - c v (unit mass, known), an overdamped truth (c = 8, poles -0.54, -7.46).
+const char* damped_truth = R"({"time": "t", "inputs": {"u": "u"},
+    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": 4.0, "c": 8.0}, "states": {"x": 0.0, "v": 0.0},
+    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
+
+}  // namespace
+
+TEST(CalibrateNominal, FileValuesThatBlowUpAreNotAvailableAndTheOtherStartsAreCalibrated) {
+  // The engineer wrote the damping with the wrong sign: at the file's values the model grows as
+  // e^(7.46 t) and is no longer finite long before the end of the 200 s record, while the
+  // structure is right and the equation error of v' estimates k and c from the data.
+  const std::string nominal = R"({"time": "t", "inputs": {"u": "u"},
+    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": 4.0, "c": -8.0}, "states": {"x": 0.0, "v": 0.0},
+    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
+  const SyntheticPlant p = test::simulated_plant(damped_truth, nominal, 2000, 0.1, {"u", -1, 1, 2, 10}, 0.01, 11);
+  {
+    Simulator s(p.nominal, p.estimation, {10});
+    EXPECT_THROW(s.simulate(s.parameter_values()), NumericalError) << "the file's values should blow up for this test to mean anything";
+  }
+  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation);
+  ASSERT_EQ(d.fit_start_estimation.size(), 1u);
+  ASSERT_EQ(d.fit_start_validation.size(), 1u);
+  EXPECT_TRUE(std::isnan(d.fit_start_estimation[0]));  // not available
+  EXPECT_TRUE(std::isnan(d.fit_start_validation[0]));
+  EXPECT_NE(d.fit_start_note.find("blew up at t = "), std::string::npos) << d.fit_start_note;
+  EXPECT_EQ(d.nominal_note.rfind("the file's values cannot be simulated", 0), 0u) << d.nominal_note;
+  ASSERT_EQ(d.fit_nominal_estimation.size(), 1u);
+  EXPECT_GT(d.fit_nominal_estimation[0], 90) << d.nominal_note;
+  EXPECT_GT(d.fit_nominal_validation.at(0), 90) << d.nominal_note;
+  EXPECT_NEAR(d.nominal.parameter("c")->value, 8.0, 0.8) << d.nominal_note;
+  EXPECT_FALSE(d.nominal_far);
+  EXPECT_TRUE(d.effects.empty()) << d.effects.front().name;  // the structure is right: nothing invented
+}
+
+TEST(CalibrateNominal, EndsWithNumericalErrorWhenNoStartCanBeSimulated) {
+  // Every parameter fixed: the file's values are the only start, and they blow up.
+  const std::string nominal = R"({"time": "t", "inputs": {"u": "u"},
+    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": {"value": 4.0, "fixed": true}, "c": {"value": -8.0, "fixed": true}},
+    "states": {"x": 0.0, "v": 0.0}, "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
+  const SyntheticPlant p = test::simulated_plant(damped_truth, nominal, 2000, 0.1, {"u", -1, 1, 2, 10}, 0.01, 11);
+  try {
+    diagnose(p.nominal, p.estimation, &p.validation);
+    ADD_FAILURE() << "expected NumericalError";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be simulated over the record from any start"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("blew up at t = "), std::string::npos) << e.what();
+  }
 }

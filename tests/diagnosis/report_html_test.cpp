@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "sets/diagnosis/report_html.hpp"
 #include "sets/models/model_file.hpp"
 
@@ -84,4 +86,14 @@ TEST(ReportHtml, SaysSoWhenNothingIsMissing) {
   EXPECT_TRUE(has(page, "class=\"verdict ok\""));
   EXPECT_TRUE(has(page, "explains the data to within the noise"));
   EXPECT_FALSE(has(page, "<h2>Figures</h2>"));
+}
+
+TEST(ReportHtml, SaysWhyTheFileValuesHaveNoFit) {
+  Diagnosis d = small_diagnosis();
+  d.fit_start_estimation = {std::numeric_limits<double>::quiet_NaN()};
+  d.fit_start_note = "the file's values cannot be simulated over the estimation record: the simulation blew up at t = 3 s (v <x>)";
+  const std::string page = diagnosis_html(d, {});
+  EXPECT_TRUE(has(page, "<td class=\"l\">nominal, file values</td><td class=\"l\">estimation</td><td>&ndash;</td>")) << page;
+  EXPECT_TRUE(has(page, "blew up at t = 3 s (v &lt;x&gt;)")) << page;
+  EXPECT_FALSE(has(page, ">nan<"));
 }

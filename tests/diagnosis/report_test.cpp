@@ -105,3 +105,18 @@ TEST(Report, TextNamesTheFitsWithUnitsTheParametersAndTheVerdict) {
   EXPECT_TRUE(fcj.contains("estimate_statistical_95"));
   EXPECT_FALSE(fcj.contains("interval_output_error"));
 }
+
+TEST(Report, FileValuesThatBlowUpAreNotAvailableWithWhyNotANumber) {
+  Diagnosis d = hand_made();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  d.fit_start_estimation = {nan};
+  d.fit_start_validation = {nan};
+  d.fit_start_note = "the file's values cannot be simulated over the estimation record: the simulation blew up at t = 358.672 s";
+  const std::string text = diagnosis_text(d);
+  EXPECT_TRUE(contains(text, "x_meas not available")) << text;
+  EXPECT_TRUE(contains(text, "blew up at t = 358.672 s")) << text;
+  EXPECT_FALSE(contains(text, "nan %")) << text;
+  const auto j = nlohmann::json::parse(diagnosis_json(d, ""));
+  EXPECT_TRUE(j.at("nominal").at("fit_before_calibration").at("estimation").at("x_meas").is_null());
+  EXPECT_EQ(j.at("nominal").at("fit_before_calibration_note").get<std::string>(), d.fit_start_note);
+}

@@ -122,4 +122,6 @@ TEST(StageHelpers, NumbersForTheReport) {
   EXPECT_EQ(fmt(123456.0, 4), "1.235e+05");
   EXPECT_EQ(fixed1(99.96), "100.0");
   EXPECT_EQ(fixed1(-0.04), "-0.0");
+  EXPECT_EQ(fixed1(-1.31002e44), "-1.31e+44");  // a fit of a model far off: three digits, not 45
+  EXPECT_EQ(fixed1(999999.94), "999999.9");
 }

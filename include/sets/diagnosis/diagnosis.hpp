@@ -147,7 +147,8 @@ struct Diagnosis {
   std::vector<std::string> outputs;      // recording columns of the outputs
   ModelFile nominal, augmented;          // calibrated nominal and augmented model files
   std::vector<std::string> free_nominal;
-  std::vector<double> fit_start_estimation, fit_start_validation;  // file values, before calibration
+  std::vector<double> fit_start_estimation, fit_start_validation;  // file values, before calibration (NaN:
+  std::string fit_start_note;            // not available, e.g. the file's values blow up; this says why)
   std::vector<double> fit_nominal_estimation, fit_nominal_validation;
   std::vector<double> fit_augmented_estimation, fit_augmented_validation;
   bool has_validation = false;
