@@ -347,8 +347,15 @@ std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k) {
   // invertible, e.g. a mirror |y|: the nominal calibrated on its data sits in another basin) is
   // screened by a linearisation at the wrong point, so its screening cost says nothing: it is
   // always refined.
-  for (const auto& h : s.ranked)
-    if (h.candidate.restart && h.candidate.parts.empty()) take(h);
+  // The same holds for a law that replaces a term of the model rather than adding one (a linear
+  // outflow a*x replaced by a square-root law): no value of its parameters gives back the current
+  // model, so it is screened at a finite change from the point of the linearisation. Near an
+  // operating point the screening then prefers the term's first-order part (an offset: sqrt(x) is
+  // about a + b*x there) and the law itself was never refined (held-out 5 001 335, a tank).
+  for (const auto& h : s.ranked) {
+    const PhysicsEffect* e = find_effect(h.candidate.effect);
+    if (h.candidate.parts.empty() && (h.candidate.restart || (e && e->placement == "replaces a*x"))) take(h);
+  }
   const std::size_t listed = out.size();
   for (std::size_t i = 0; i < listed; ++i)
     for (const auto& h : s.ranked)
