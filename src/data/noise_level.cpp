@@ -74,6 +74,7 @@ double clipped_rms(const VectorXd& x) {
 // was left out: c / (2 (1 - a^2)).
 struct ArBand {
   double sigma = 0, a = 0, f_lo = 0.25;  // f_lo: lower edge of the lowest octave in the band
+  int octaves = 1;                       // octaves in the band
   int skipped = 0;                       // octaves above f_lo left out as signal or model error
 };
 
@@ -135,13 +136,17 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P) {
     if (octaves.size() < 2 || octave_ratio(nf, r.a, c) <= accept) break;
     ++r.skipped;
   }
+  r.octaves = static_cast<int>(octaves.size());
   r.sigma = std::sqrt(c / (2 * (1 - r.a * r.a)));
   return r;
 }
 
-// Colour is believed only when the AR(1) shape holds from f = 1/32 to 1/2 (4 octaves): by then it
-// has risen above its Nyquist value by 3.4x (a = 0.3) to 81x (a = 0.9), so a is well constrained.
+// Colour is believed only when the AR(1) shape holds from f = 1/32 to 1/2: by then it has risen
+// above its Nyquist value by 3.4x (a = 0.3) to 81x (a = 0.9), so a is well constrained. With
+// octaves left out between, it must still hold on as many (4) as without: model error decaying
+// towards Nyquist can mimic the shape over the top two octaves and one more further down.
 constexpr double colour_gate = 1.0 / 32;
+constexpr int colour_octaves = 4;
 
 struct SpectralReading {
   double sigma = 0;
@@ -157,7 +162,7 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
   for (std::size_t i = 1; i < signals.size(); ++i) s.density = s.density.cwiseMin(welch_spectrum(signals[i]).density);
   SpectralReading out;
   const ArBand ar = ar_band(s.frequency, s.density);
-  if (ar.f_lo <= colour_gate) {
+  if (ar.f_lo <= colour_gate && ar.octaves >= colour_octaves) {
     out.sigma = ar.sigma;
     out.coloured = true;
     out.reason = "AR(1) a = " + num(ar.a, 2) + " fits the spectrum from f = " + num(ar.f_lo, 3) + " to 0.5 cycles/sample";
@@ -174,7 +179,9 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
     const DifferencePlateau p = difference_plateau(x);
     if (p.sigma < plateau) plateau = p.sigma, order = p.order;
   }
-  const std::string held = " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")";
+  const std::string held = ar.skipped == 0 ? " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")"
+                                           : " (AR(1) shape held on " + std::to_string(ar.octaves) + " octaves down to f = " + num(ar.f_lo, 3) +
+                                                 ", " + std::to_string(ar.skipped) + " left out between: fewer than " + std::to_string(colour_octaves) + ")";
   if (floor <= plateau) {
     out.sigma = floor;
     out.reason = "white floor of the top 1/8 band" + held;
