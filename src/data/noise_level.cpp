@@ -70,7 +70,8 @@ double clipped_rms(const VectorXd& x) {
 // within [1/1.5, 1.5] (1.5 is ~4 standard errors of a 30-dof Welch average over >= 4 bins). Signal
 // and model error add to the noise's density, never take from it: once the shape holds over two
 // octaves (a constrained), an octave above it by more than 1.5 is left out as theirs and the band
-// looks further down; one below it ends the band. The noise variance is extrapolated under what
+// looks further down; one below it ends the band, and the one that rejoins it below a gap must
+// match the shape found above the gap. The noise variance is extrapolated under what
 // was left out: c / (2 (1 - a^2)).
 struct ArBand {
   double sigma = 0, a = 0, f_lo = 0.25;  // f_lo: lower edge of the lowest octave in the band
@@ -116,6 +117,7 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P) {
   std::vector<char> band(static_cast<std::size_t>(nb));
   for (Index k = 0; k < nb; ++k) band[static_cast<std::size_t>(k)] = f[k] >= r.f_lo;
   std::vector<double> octaves{0.25};  // lower edges of the octaves in the band
+  bool after_gap = false;             // the octave above the one tried was left out
   double c = 0;
   fit(band, r.a, c);
   for (double nf = r.f_lo / 2;; nf /= 2) {
@@ -129,12 +131,15 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P) {
     bool holds = true;
     for (double lo : octaves) holds = holds && std::abs(std::log(octave_ratio(lo, a2, c2))) <= std::log(accept);
     holds = holds && std::abs(std::log(octave_ratio(nf, a2, c2))) <= std::log(accept);
+    // The octave just below a gap must match the shape found above it, not bend it: a refit can
+    // swing a far enough to meet model error further down.
+    holds = holds && (!after_gap || std::abs(std::log(octave_ratio(nf, r.a, c))) <= std::log(accept));
     if (holds) {
-      band = grown, octaves.push_back(nf), r.f_lo = nf, r.a = a2, c = c2;
+      band = grown, octaves.push_back(nf), r.f_lo = nf, r.a = a2, c = c2, after_gap = false;
       continue;
     }
     if (octaves.size() < 2 || octave_ratio(nf, r.a, c) <= accept) break;
-    ++r.skipped;
+    ++r.skipped, after_gap = true;
   }
   r.octaves = static_cast<int>(octaves.size());
   r.sigma = std::sqrt(c / (2 * (1 - r.a * r.a)));
