@@ -65,12 +65,18 @@ double clipped_rms(const VectorXd& x) {
 
 // ---- spectrum of the noise
 
-// AR(1) density c / (1 + a^2 - 2 a cos 2 pi f) fitted to P over a band that starts as the top half
-// and grows one octave at a time while every octave keeps mean(P / S) within [1/1.5, 1.5] (1.5 is
-// ~4 standard errors of a 30-dof Welch average over >= 4 bins). Below the band the spectrum is
-// taken to be signal or model error; the noise variance is extrapolated: c / (2 (1 - a^2)).
+// AR(1) density c / (1 + a^2 - 2 a cos 2 pi f) fitted to P over a band of octaves that starts as
+// the top half and grows one octave at a time while every octave of the band keeps mean(P / S)
+// within [1/1.5, 1.5] (1.5 is ~4 standard errors of a 30-dof Welch average over >= 4 bins). Signal
+// and model error add to the noise's density, never take from it: once the shape holds over two
+// octaves (a constrained), an octave above it by more than 1.5 is left out as theirs and the band
+// looks further down; one below it ends the band, and the one that rejoins it below a gap must
+// match the shape found above the gap. The noise variance is extrapolated under what
+// was left out: c / (2 (1 - a^2)).
 struct ArBand {
-  double sigma = 0, a = 0, f_lo = 0.25;
+  double sigma = 0, a = 0, f_lo = 0.25;  // f_lo: lower edge of the lowest octave in the band
+  int octaves = 1;                       // octaves in the band
+  int skipped = 0;                       // octaves above f_lo left out as signal or model error
 };
 
 ArBand ar_band(const VectorXd& f, const VectorXd& P) {
@@ -98,42 +104,54 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P) {
       if (mis < best) best = mis, a_best = a, c_best = c;
     }
   };
+  // Octave [lo, 2 lo) (the top one [1/4, 1/2] closed): its bins and its mean(P / S) under (a, c).
+  auto in_octave = [&](double lo, Index k) { return f[k] >= lo && (lo >= 0.25 || f[k] < 2 * lo); };
+  auto octave_ratio = [&](double lo, double a, double c) {
+    double sum = 0;
+    long n = 0;
+    for (Index k = 0; k < nb; ++k)
+      if (in_octave(lo, k)) sum += P[k] * shape(a, k) / c, ++n;
+    return n > 0 ? sum / static_cast<double>(n) : 1.0;
+  };
   ArBand r;
   std::vector<char> band(static_cast<std::size_t>(nb));
   for (Index k = 0; k < nb; ++k) band[static_cast<std::size_t>(k)] = f[k] >= r.f_lo;
+  std::vector<double> octaves{0.25};  // lower edges of the octaves in the band
+  bool after_gap = false;             // the octave above the one tried was left out
   double c = 0;
   fit(band, r.a, c);
-  while (true) {
-    const double nf = r.f_lo / 2;
+  for (double nf = r.f_lo / 2;; nf /= 2) {
     std::vector<char> grown = band;
     long added = 0;
     for (Index k = 0; k < nb; ++k)
-      if (f[k] >= nf && f[k] < r.f_lo) grown[static_cast<std::size_t>(k)] = 1, ++added;
+      if (in_octave(nf, k)) grown[static_cast<std::size_t>(k)] = 1, ++added;
     if (added < 4) break;
     double a2 = 0, c2 = 0;
     fit(grown, a2, c2);
-    std::vector<double> ratios;  // every octave of the grown band, lowest first; the top one is [1/4, 1/2]
-    for (double lo = nf; lo < 0.5; lo *= 2) {
-      double sum = 0;
-      long n = 0;
-      for (Index k = 0; k < nb; ++k)
-        if (f[k] >= lo && (lo >= 0.25 || f[k] < 2 * lo)) sum += P[k] * shape(a2, k) / c2, ++n;
-      if (n > 0) ratios.push_back(sum / static_cast<double>(n));
+    bool holds = true;
+    for (double lo : octaves) holds = holds && std::abs(std::log(octave_ratio(lo, a2, c2))) <= std::log(accept);
+    holds = holds && std::abs(std::log(octave_ratio(nf, a2, c2))) <= std::log(accept);
+    // The octave just below a gap must match the shape found above it, not bend it: a refit can
+    // swing a far enough to meet model error further down.
+    holds = holds && (!after_gap || std::abs(std::log(octave_ratio(nf, r.a, c))) <= std::log(accept));
+    if (holds) {
+      band = grown, octaves.push_back(nf), r.f_lo = nf, r.a = a2, c = c2, after_gap = false;
+      continue;
     }
-    const auto [mn, mx] = std::minmax_element(ratios.begin(), ratios.end());
-    if (ratios.empty() || ratios.front() > accept || *mx > accept || *mn < 1 / accept) break;
-    band = grown;
-    r.f_lo = nf;
-    r.a = a2;
-    c = c2;
+    if (octaves.size() < 2 || octave_ratio(nf, r.a, c) <= accept) break;
+    ++r.skipped, after_gap = true;
   }
+  r.octaves = static_cast<int>(octaves.size());
   r.sigma = std::sqrt(c / (2 * (1 - r.a * r.a)));
   return r;
 }
 
-// Colour is believed only when the AR(1) shape holds from f = 1/32 to 1/2 (4 octaves): by then it
-// has risen above its Nyquist value by 3.4x (a = 0.3) to 81x (a = 0.9), so a is well constrained.
+// Colour is believed only when the AR(1) shape holds from f = 1/32 to 1/2: by then it has risen
+// above its Nyquist value by 3.4x (a = 0.3) to 81x (a = 0.9), so a is well constrained. With
+// octaves left out between, it must still hold on as many (4) as without: model error decaying
+// towards Nyquist can mimic the shape over the top two octaves and one more further down.
 constexpr double colour_gate = 1.0 / 32;
+constexpr int colour_octaves = 4;
 
 struct SpectralReading {
   double sigma = 0;
@@ -149,10 +167,11 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
   for (std::size_t i = 1; i < signals.size(); ++i) s.density = s.density.cwiseMin(welch_spectrum(signals[i]).density);
   SpectralReading out;
   const ArBand ar = ar_band(s.frequency, s.density);
-  if (ar.f_lo <= colour_gate) {
+  if (ar.f_lo <= colour_gate && ar.octaves >= colour_octaves) {
     out.sigma = ar.sigma;
     out.coloured = true;
     out.reason = "AR(1) a = " + num(ar.a, 2) + " fits the spectrum from f = " + num(ar.f_lo, 3) + " to 0.5 cycles/sample";
+    if (ar.skipped > 0) out.reason += " (" + std::to_string(ar.skipped) + " octave(s) between left out: more power than the shape, signal or model error)";
     return out;
   }
   std::vector<double> top;  // 0.98: median / mean of a 30-dof chi-square
@@ -165,7 +184,9 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
     const DifferencePlateau p = difference_plateau(x);
     if (p.sigma < plateau) plateau = p.sigma, order = p.order;
   }
-  const std::string held = " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")";
+  const std::string held = ar.skipped == 0 ? " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")"
+                                           : " (AR(1) shape held on " + std::to_string(ar.octaves) + " octaves down to f = " + num(ar.f_lo, 3) +
+                                                 ", " + std::to_string(ar.skipped) + " left out between: fewer than " + std::to_string(colour_octaves) + ")";
   if (floor <= plateau) {
     out.sigma = floor;
     out.reason = "white floor of the top 1/8 band" + held;

@@ -17,7 +17,7 @@ namespace sets {
 /// How the noise level was obtained, most reliable first.
 enum class NoiseMethod {
   repeats,            // the exogenous inputs repeat: the output's difference over the lag is noise
-  residual_coloured,  // residual of the calibrated model; AR(1) noise shape verified over >= 4 octaves
+  residual_coloured,  // residual of the calibrated model; AR(1) noise shape verified from 1/32 to 1/2 cycles/sample
   residual_floor,     // residual of the calibrated model; its white floor (a lower bound for coloured noise)
   output_spectrum,    // no model: the output's own spectrum (white floor or difference plateau)
 };
