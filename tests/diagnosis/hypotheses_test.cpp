@@ -32,6 +32,17 @@ HypothesisSearch search(test::StageRun& s) {
   return search_hypotheses(s.c(), nominal, noise, s.d);
 }
 
+// What the search names on a random plant, one effect at most, after the stages before it.
+std::vector<DiagnosedEffect> named_alone(const SyntheticPlant& plant) {
+  test::StageRun s(plant);
+  s.options.max_effects = 1;
+  const NominalFit nominal = calibrate_nominal(s.c(), s.d);
+  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  search_hypotheses(s.c(), nominal, noise, s.d);
+  return s.d.effects;
+}
+
 }  // namespace
 
 TEST(Hypotheses, CoulombLawIsChosenForTheCoulombPlant) {
@@ -135,15 +146,10 @@ TEST(Hypotheses, MemberOfAPairWhoseOtherMemberDoesNothingIsJudgedAlone) {
   const SyntheticPlant plant = random_plant(5000856);
   ASSERT_EQ(plant.effects.size(), 1u);
   ASSERT_EQ(plant.effects[0].name, "hysteresis");
-  test::StageRun s(plant);
-  s.options.max_effects = 1;
-  const NominalFit nominal = calibrate_nominal(s.c(), s.d);
-  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
-  search_hypotheses(s.c(), nominal, noise, s.d);
-  ASSERT_EQ(s.d.effects.size(), 1u);
-  EXPECT_EQ(s.d.effects[0].name, "hysteresis");
-  for (const auto& r : s.d.effects[0].rules) EXPECT_TRUE(r.passed || !r.applies) << r.name;
+  const std::vector<DiagnosedEffect> named = named_alone(plant);
+  ASSERT_EQ(named.size(), 1u);
+  EXPECT_EQ(named[0].name, "hysteresis");
+  for (const auto& r : named[0].rules) EXPECT_TRUE(r.passed || !r.applies) << r.name;
 }
 
 
@@ -156,17 +162,12 @@ TEST(Hypotheses, DelayBetweenTheGridsValuesIsNamedAloneAtItsNumberOfSamples) {
   ASSERT_EQ(plant.effects.size(), 1u);
   ASSERT_EQ(plant.effects[0].name, "time_delay");
   const double true_samples = plant.effects[0].values.at(0).second;
-  test::StageRun s(plant);
-  s.options.max_effects = 1;
-  const NominalFit nominal = calibrate_nominal(s.c(), s.d);
-  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
-  search_hypotheses(s.c(), nominal, noise, s.d);
-  std::string named;
-  for (const auto& e : s.d.effects) named += e.name + " ";
-  ASSERT_EQ(s.d.effects.size(), 1u) << named;
-  EXPECT_EQ(s.d.effects[0].name, "time_delay");
-  EXPECT_EQ(s.d.effects[0].delay_samples, static_cast<int>(true_samples));
+  const std::vector<DiagnosedEffect> named = named_alone(plant);
+  std::string names;
+  for (const auto& e : named) names += e.name + " ";
+  ASSERT_EQ(named.size(), 1u) << names;
+  EXPECT_EQ(named[0].name, "time_delay");
+  EXPECT_EQ(named[0].delay_samples, static_cast<int>(true_samples));
 }
 
 // A law that replaces a term (the tank's linear outflow a*x by a square-root law) has no value of
@@ -178,13 +179,8 @@ TEST(Hypotheses, LawThatReplacesATermIsRefinedWhateverItsScreeningRank) {
   const SyntheticPlant plant = random_plant(5001335);
   ASSERT_EQ(plant.effects.size(), 1u);
   ASSERT_EQ(plant.effects[0].name, "sqrt_outflow");
-  test::StageRun s(plant);
-  s.options.max_effects = 1;
-  const NominalFit nominal = calibrate_nominal(s.c(), s.d);
-  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
-  search_hypotheses(s.c(), nominal, noise, s.d);
-  ASSERT_EQ(s.d.effects.size(), 1u);
-  EXPECT_EQ(s.d.effects[0].name, "sqrt_outflow");
-  EXPECT_EQ(s.d.effects[0].equation, plant.effects[0].where);
+  const std::vector<DiagnosedEffect> named = named_alone(plant);
+  ASSERT_EQ(named.size(), 1u);
+  EXPECT_EQ(named[0].name, "sqrt_outflow");
+  EXPECT_EQ(named[0].equation, plant.effects[0].where);
 }
