@@ -760,10 +760,8 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
   if (better.empty()) return;
   std::vector<ToRefine> to_refine;
   for (std::size_t k = 0; k < better.size(); ++k) {
-    ModelFile at_optimum = better[k].model;
-    for (auto& q : at_optimum.parameters)
-      if (const auto* v = r.trials[which[k]].model.parameter(q.name)) q.value = v->value;
-    to_refine.push_back({&better[k], {values_of(at_optimum), values_of(better[k].model)}});
+    const Trial& t = r.trials[which[k]];
+    to_refine.push_back({&better[k], {values_of(mapped_by_role(better[k], t.cand, t.model)), values_of(better[k].model)}});
   }
   const std::vector<Trial> moved = refine(c, to_refine, h.known_scales);
   for (std::size_t k = 0; k < which.size(); ++k) {
