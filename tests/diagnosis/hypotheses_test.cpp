@@ -152,7 +152,6 @@ TEST(Hypotheses, MemberOfAPairWhoseOtherMemberDoesNothingIsJudgedAlone) {
   for (const auto& r : named[0].rules) EXPECT_TRUE(r.passed || !r.applies) << r.name;
 }
 
-
 // A delay competes at its best whole number of samples: this plant's delay of 5 samples lies
 // between the screening grid's 4 and 6, and at a grid value an offset beside the delay fitted the
 // grid step's error, so the pair was named (offset first, delay second) on main 44215f1. (Seed
