@@ -135,10 +135,16 @@ GlobalStep global_step(const Context& c, const ModelFile& current, const std::ve
   for (auto& r : optima_of(c, current, chosen, fr, o))
     if (g.optima.empty() || (r.ok && std::isfinite(r.cost) && r.outputs.allFinite())) g.optima.push_back(std::move(r));
   const CalibrationResult& from_search = g.optima.front();
-  if (!from_search.ok) throw NumericalError("the augmented model blows up with the full substeps");
-  for (std::size_t k = 1; k < g.optima.size(); ++k)
+  // The search screens with the coarse step, whose RK4 damping can hide a growing mode: its
+  // optimum may blow up with the full substeps while a global-step optimum (refined with them) does not.
+  if (!from_search.ok && g.optima.size() == 1) return {};  // no optimum: the caller keeps no effect
+  g.best = from_search.ok ? 0 : 1;
+  for (std::size_t k = g.best + 1; k < g.optima.size(); ++k)
     if (g.optima[k].cost < g.optima[g.best].cost) g.best = k;
-  if (g.best != 0)
+  if (!from_search.ok)
+    d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " + fmt(g.estimate().cost) +
+                    "; the search's optimum blows up with the full substeps)";
+  else if (g.best != 0)
     d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " +
                     fmt(g.estimate().cost) + " against " + fmt(from_search.cost) + " from the search's optimum)";
   return g;
@@ -167,7 +173,7 @@ OutputErrorIntervals output_error_hull(const Context& c, const ModelFile& curren
   int components = 1;
   for (std::size_t k = 0; oe.built && k < step.optima.size(); ++k) {
     const CalibrationResult& other = step.optima[k];
-    if (k == step.best || (other.parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
+    if (!other.ok || k == step.best || (other.parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
     const Eigen::MatrixXd Rk = c.exact.measured() - other.outputs;
     if (!inside_bound(Rk, oe)) continue;
     try {
@@ -286,21 +292,38 @@ void set_bounded_error_interval(EffectParameter& ep, double min, double max) {
   ep.hi = std::min(ep.hi, ep.ee_hi);
 }
 
+namespace {
+
+void nominal_is_final(const NominalFit& nominal, Diagnosis& d) {
+  d.augmented = d.nominal;
+  d.fit_augmented_estimation = d.fit_nominal_estimation;
+  d.fit_augmented_validation = d.fit_nominal_validation;
+  d.augmented_estimation = nominal.simulation.outputs;
+  d.augmented_validation = nominal.validation_outputs;
+}
+
+}  // namespace
+
 void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch& search, Diagnosis& d) {
-  if (d.effects.empty()) {
-    d.augmented = d.nominal;
-    d.fit_augmented_estimation = d.fit_nominal_estimation;
-    d.fit_augmented_validation = d.fit_nominal_validation;
-    d.augmented_estimation = nominal.simulation.outputs;
-    d.augmented_validation = nominal.validation_outputs;
-    return;
-  }
+  if (d.effects.empty()) return nominal_is_final(nominal, d);
   c.say("refining the augmented model and computing parameter uncertainty intervals");
   ModelFile current = search.current;  // its values refined with the final substeps here
   const std::vector<int> fr = Simulator(current, c.estimation, {c.options.final_substeps}).free_parameters();
   CalibrationOptions o;
   o.scale = scales_for(current, fr, search.known_scales);
   const GlobalStep step = global_step(c, current, search.chosen, fr, o, d);
+  if (step.optima.empty()) {
+    // The screening step's RK4 damping hid a growing mode: a model that cannot be simulated with
+    // the full substeps is no answer, so no effect is kept (random plant 5 001 610: a nominal
+    // with a negative damping, which one sine cannot rule out, plus an output saturation).
+    std::string names;
+    for (const auto& e : d.effects) names += (names.empty() ? "" : ", ") + e.name;
+    c.say("the augmented model (" + names + ") blows up with the full substeps from every optimum: no effect is kept");
+    d.bound_note += (d.bound_note.empty() ? "" : "; ") + std::string("the augmented model (") + names +
+                    ") blows up with the full substeps from every optimum: no effect is kept";
+    d.effects.clear();
+    return nominal_is_final(nominal, d);
+  }
   const CalibrationResult& r = step.estimate();
   store_values(current, r.parameters);
   store_augmented(c, current, r, d);
