@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "diagnosis/stages.hpp"
 #include "sets/core/error.hpp"
@@ -84,27 +85,26 @@ std::vector<Eigen::VectorXd> global_step_starts(const Context& c, const ModelFil
 }
 
 // The optima the estimate is chosen from: first the search's optimum refined with the final
-// substeps, then each start of the global step calibrated (the search's budget) and refined with
-// the final substeps. One worker job each, with simulators of its own (a Simulator holds its
-// expressions' state and is never shared between threads), results in this order whatever the
-// number of threads. A global-step start that cannot be calibrated adds nothing (not ok); the
-// search's optimum blowing up is an error.
+// substeps (`from_search`; else the model's values are a start like the others), then each start
+// of the global step calibrated (the search's budget) and refined with the final substeps. One
+// worker job each, with simulators of its own (a Simulator holds its expressions' state and is
+// never shared between threads), results in this order whatever the number of threads. A start
+// that cannot be calibrated adds nothing (not ok).
 std::vector<CalibrationResult> optima_of(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
-                                         const std::vector<int>& free, const CalibrationOptions& o) {
+                                         const std::vector<int>& free, const CalibrationOptions& o, bool from_search) {
   const std::vector<Eigen::VectorXd> starts = global_step_starts(c, current, chosen);
   CalibrationOptions full = o;
   full.max_evaluations = 80 * static_cast<int>(free.size() + 1);
   std::vector<CalibrationResult> out(starts.size() + 1);
   run_jobs(c.options.threads, out.size(), [&](std::size_t i) {
-    if (i == 0) {  // the search's optimum: an error here is the caller's
-      const Simulator exact(current, c.estimation, {c.options.final_substeps});
-      out[0] = refine_with_final_substeps(c, exact, exact.parameter_values(), free, o);
-      return;
-    }
     try {
       const Simulator exact(current, c.estimation, {c.options.final_substeps});
+      if (i == 0 && from_search) {
+        out[0] = refine_with_final_substeps(c, exact, exact.parameter_values(), free, o);
+        return;
+      }
       const Simulator fast(current, c.estimation, {c.options.screening_substeps});
-      const CalibrationResult coarse = calibrate(fast, starts[i - 1], free, full);
+      const CalibrationResult coarse = calibrate(fast, i == 0 ? exact.parameter_values() : starts[i - 1], free, full);
       if (coarse.ok) out[i] = refine_with_final_substeps(c, exact, coarse.parameters, free, o);
     } catch (...) {
       out[i] = CalibrationResult();  // a start that cannot be calibrated adds nothing
@@ -122,7 +122,8 @@ bool inside_bound(const Eigen::MatrixXd& R, const OutputErrorIntervals& oe) {
   return true;
 }
 
-// The global step's optima (the search's own first); the estimate is the best of them.
+// The global step's optima (the first from the search's optimum or the model's values); the
+// estimate is the best of those that can be simulated (not ok when none can).
 struct GlobalStep {
   std::vector<CalibrationResult> optima;
   std::size_t best = 0;
@@ -130,24 +131,48 @@ struct GlobalStep {
 };
 
 GlobalStep global_step(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
-                       const std::vector<int>& fr, const CalibrationOptions& o, Diagnosis& d) {
+                       const std::vector<int>& fr, const CalibrationOptions& o, bool from_search, Diagnosis& d) {
   GlobalStep g;
-  for (auto& r : optima_of(c, current, chosen, fr, o))
+  for (auto& r : optima_of(c, current, chosen, fr, o, from_search))
     if (g.optima.empty() || (r.ok && std::isfinite(r.cost) && r.outputs.allFinite())) g.optima.push_back(std::move(r));
-  const CalibrationResult& from_search = g.optima.front();
-  // The search screens with the coarse step, whose RK4 damping can hide a growing mode: its
-  // optimum may blow up with the full substeps while a global-step optimum (refined with them) does not.
-  if (!from_search.ok && g.optima.size() == 1) return {};  // no optimum: the caller keeps no effect
-  g.best = from_search.ok ? 0 : 1;
-  for (std::size_t k = g.best + 1; k < g.optima.size(); ++k)
-    if (g.optima[k].cost < g.optima[g.best].cost) g.best = k;
-  if (!from_search.ok)
-    d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " + fmt(g.estimate().cost) +
-                    "; the search's optimum blows up with the full substeps)";
-  else if (g.best != 0)
+  for (std::size_t k = 1; k < g.optima.size(); ++k)
+    if (!g.estimate().ok || g.optima[k].cost < g.estimate().cost) g.best = k;
+  if (from_search && g.best != 0 && g.optima.front().ok)
     d.bound_note += "; the estimate comes from the global step over the effects' parameters (misfit " +
-                    fmt(g.estimate().cost) + " against " + fmt(from_search.cost) + " from the search's optimum)";
+                    fmt(g.estimate().cost) + " against " + fmt(g.optima.front().cost) + " from the search's optimum)";
   return g;
+}
+
+// The search calibrates with the screening substeps, and like the nominal's (calibrate_from) its
+// optimum can lie where that coarse step hides a growing mode (RK4 damps a mode it resolves
+// coarsely): a negative damping fits at the screening step and diverges, or fits worse than the
+// calibrated nominal the augmented model extends, at the final one. Then the screening step is
+// chosen again at the search's optimum, finer (screening_substeps, as diagnose does for the
+// calibrated nominal), and the global step is run again from the nominal's calibrated values (the
+// effects' parameters at the search's). The better estimate is kept; d.bound_note says so.
+GlobalStep global_step_again(const Context& c, const ModelFile& current, const std::vector<Candidate>& chosen,
+                             const std::vector<int>& fr, const CalibrationOptions& o, double nominal_cost, GlobalStep first, Diagnosis& d) {
+  const Simulator exact(current, c.estimation, {c.options.final_substeps});
+  DiagnosisOptions finer = c.options;
+  finer.screening_substeps = std::min(finer.final_substeps, screening_substeps(current, c.estimation, exact, exact.parameter_values(),
+                                                                               finer.final_substeps, finer.screening_substeps + 1));
+  const Simulator fast(current, c.estimation, {finer.screening_substeps});
+  const Context again{current, c.estimation, c.validation, finer, exact, fast, nullptr, c.say};
+  ModelFile restart = current;
+  for (auto& q : restart.parameters)
+    if (const ModelParameter* n = d.nominal.parameter(q.name); n && !q.fixed) q.value = n->value;
+  std::ostringstream note;
+  note << "; at " << c.options.final_substeps << " RK4 substeps the search's optimum "
+       << (first.estimate().ok ? "fits worse than the calibrated nominal (misfit " + fmt(first.estimate().cost) + " against " + fmt(nominal_cost) + ")" : "diverges")
+       << " (the screening step of " << c.options.screening_substeps << " hides it): calibrated again with "
+       << finer.screening_substeps << " from the nominal's values";
+  c.say("the augmented model: " + note.str().substr(2));
+  GlobalStep second = global_step(again, restart, chosen, fr, o, false, d);
+  const bool better = second.estimate().ok && (!first.estimate().ok || second.estimate().cost < first.estimate().cost);
+  note << " -> " << (second.estimate().ok ? "misfit " + fmt(second.estimate().cost) : std::string("diverges"))
+       << (better ? ", used" : ", not better: the search's optimum is kept");
+  d.bound_note += note.str();
+  return better ? second : first;
 }
 
 // The augmented model (values refined) and its fits on both records.
@@ -173,7 +198,7 @@ OutputErrorIntervals output_error_hull(const Context& c, const ModelFile& curren
   int components = 1;
   for (std::size_t k = 0; oe.built && k < step.optima.size(); ++k) {
     const CalibrationResult& other = step.optima[k];
-    if (!other.ok || k == step.best || (other.parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
+    if (k == step.best || !other.ok || (other.parameters - r.parameters).cwiseAbs().maxCoeff() == 0) continue;
     const Eigen::MatrixXd Rk = c.exact.measured() - other.outputs;
     if (!inside_bound(Rk, oe)) continue;
     try {
@@ -311,11 +336,13 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   const std::vector<int> fr = Simulator(current, c.estimation, {c.options.final_substeps}).free_parameters();
   CalibrationOptions o;
   o.scale = scales_for(current, fr, search.known_scales);
-  const GlobalStep step = global_step(c, current, search.chosen, fr, o, d);
-  if (step.optima.empty()) {
-    // The screening step's RK4 damping hid a growing mode: a model that cannot be simulated with
-    // the full substeps is no answer, so no effect is kept (random plant 5 001 610: a nominal
-    // with a negative damping, which one sine cannot rule out, plus an output saturation).
+  GlobalStep step = global_step(c, current, search.chosen, fr, o, true, d);
+  if (!step.estimate().ok || step.estimate().cost > nominal.cost)
+    step = global_step_again(c, current, search.chosen, fr, o, nominal.cost, std::move(step), d);
+  if (!step.estimate().ok) {
+    // No optimum can be simulated with the full substeps: a model that blows up is no answer, so
+    // no effect is kept (random plant 5 001 610: a nominal with a negative damping, which one sine
+    // cannot rule out, plus the output saturation the search found).
     std::string names;
     for (const auto& e : d.effects) names += (names.empty() ? "" : ", ") + e.name;
     c.say("the augmented model (" + names + ") blows up with the full substeps from every optimum: no effect is kept");

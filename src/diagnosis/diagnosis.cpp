@@ -37,6 +37,14 @@ void conclude(Diagnosis& d) {
     d.nothing_missing = false;
     d.verdict = "Missing physics: ";
     for (std::size_t k = 0; k < d.effects.size(); ++k) d.verdict += (k ? ", " : "") + d.effects[k].name + " (" + d.effects[k].equation + ")";
+    // Said, never hidden: an augmented model that fits worse than the nominal it extends.
+    if (cost_of(d.fit_augmented_estimation) > cost_of(d.fit_nominal_estimation)) {
+      d.verdict += "; the augmented model fits the estimation record worse than the calibrated nominal (";
+      for (std::size_t j = 0; j < d.outputs.size(); ++j)
+        d.verdict += (j ? ", " : "") + d.outputs[j] + " " + fixed1(d.fit_augmented_estimation[j]) + " % against " +
+                     fixed1(d.fit_nominal_estimation[j]) + " %";
+      d.verdict += ")";
+    }
     d.verdict += d.final_tests.within_noise() ? "; the augmented model is within the noise."
                                               : "; a mismatch beyond the noise remains (" + d.final_tests.summary() + ").";
     return;
