@@ -164,6 +164,7 @@ void bind_simulator(py::module_& m) {
       .def_readonly("method", &NoiseLevelEstimate::method)
       .def_readonly("reason", &NoiseLevelEstimate::reason)
       .def_readonly("quantisation_step", &NoiseLevelEstimate::quantisation_step)
+      .def_readonly("ar_pole", &NoiseLevelEstimate::ar_pole, "AR(1) pole of the noise when its colour was verified, else 0")
       .def("__repr__", [](const NoiseLevelEstimate& e) {
         return "NoiseLevelEstimate(sigma=" + std::to_string(e.sigma) + ", method=" + noise_method_name(e.method) + ")";
       });

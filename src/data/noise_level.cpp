@@ -154,7 +154,7 @@ constexpr double colour_gate = 1.0 / 32;
 constexpr int colour_octaves = 4;
 
 struct SpectralReading {
-  double sigma = 0;
+  double sigma = 0, ar_pole = 0;
   bool coloured = false;
   std::string reason;
 };
@@ -169,6 +169,7 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals) {
   const ArBand ar = ar_band(s.frequency, s.density);
   if (ar.f_lo <= colour_gate && ar.octaves >= colour_octaves) {
     out.sigma = ar.sigma;
+    out.ar_pole = ar.a;
     out.coloured = true;
     out.reason = "AR(1) a = " + num(ar.a, 2) + " fits the spectrum from f = " + num(ar.f_lo, 3) + " to 0.5 cycles/sample";
     if (ar.skipped > 0) out.reason += " (" + std::to_string(ar.skipped) + " octave(s) between left out: more power than the shape, signal or model error)";
@@ -481,6 +482,7 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
     const SpectralReading sp = dof > rr.parameters ? from_spectrum({rr.raw, rr.projected}) : from_spectrum({rr.raw});
     out.sigma = sp.sigma;
     out.method = sp.coloured ? NoiseMethod::residual_coloured : NoiseMethod::residual_floor;
+    out.ar_pole = sp.ar_pole;
     out.reason = "residual of the model: " + sp.reason;
     if (out.sigma > rr.upper) {
       out.sigma = rr.upper;
@@ -490,6 +492,7 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
     const SpectralReading sp = from_spectrum({r});
     out.sigma = sp.sigma;
     out.method = NoiseMethod::output_spectrum;
+    out.ar_pole = sp.ar_pole;
     out.reason = "spectrum of the output: " + sp.reason;
   }
   if (out.sigma < q / std::sqrt(12.0)) {

@@ -56,10 +56,13 @@ void conclude(Diagnosis& d) {
   }
   d.unexplained = true;
   d.where = where_of(d);
-  const std::string what = d.nominal_tests.falsified
-                               ? "The mismatch is real but no catalogue effect explains it ("
-                               : "The residual is inside the noise bound but not white (coloured measurement noise, or a "
-                                 "mismatch that no catalogue effect explains; ";
+  bool whitened = false;
+  for (double a : d.nominal_tests.whitened_by) whitened = whitened || a != 0;
+  const std::string what = d.nominal_tests.falsified ? "The mismatch is real but no catalogue effect explains it ("
+                           : whitened ? "The residual is inside the noise bound but not the coloured noise read from it (a "
+                                        "mismatch that no catalogue effect explains, or noise of another colour; "
+                                      : "The residual is inside the noise bound but not white (coloured measurement noise, or a "
+                                        "mismatch that no catalogue effect explains; ";
   d.verdict = what + d.nominal_tests.summary() + ")" + (d.where.empty() ? "" : "; " + d.where) +
               (d.nominal_far ? "; " + d.nominal_note : "") + ".";
 }
@@ -119,7 +122,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   for (const auto& n : d.noise)
     d.noise_note += (d.noise_note.empty() ? "" : "; ") + n.output + ": " + noise_method_name(n.estimate.method);
   say("testing the calibrated nominal's residual (falsification, whiteness, independence)");
-  d.nominal_tests = test_residual(exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  d.nominal_tests = test_residual(exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
   test_data_hypothesis(c, nominal, noise, d);                                   // about the data, not physics
   locate_mismatch(c, nominal, noise, d);                                        // 2.
   const HypothesisSearch search = search_hypotheses(c, nominal, noise, d);      // 3.
@@ -129,7 +132,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   if (!d.effects.empty()) {
     Simulator aug(d.augmented, est, {opt.final_substeps});
     const Eigen::VectorXd p = aug.parameter_values();
-    d.final_tests = test_residual(aug, p, aug.simulate(p), noise.sigma);
+    d.final_tests = test_residual(aug, p, aug.simulate(p), noise.sigma, noise.pole);
   }
   conclude(d);
   say("done");

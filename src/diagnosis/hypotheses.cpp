@@ -828,7 +828,7 @@ void record_pick(const Context& c, const Round& r, std::size_t pick, std::size_t
 bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise) {
   Simulator s(m, c.estimation, {c.options.screening_substeps});
   const SimulationResult r = s.simulate(values_of(m));
-  return test_residual(s, values_of(m), r, noise.sigma).within_noise();
+  return test_residual(s, values_of(m), r, noise.sigma, noise.pole).within_noise();
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d
   for (Eigen::Index j = 0; j < Y.cols(); ++j) {
     const double s = d.noise[static_cast<std::size_t>(j)].estimate.sigma;
     f.sigma.push_back(s);
+    f.pole.push_back(d.noise[static_cast<std::size_t>(j)].estimate.ar_pole);
     const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
     if (den > 0) f.cost += s * s * static_cast<double>(N) / den;
   }

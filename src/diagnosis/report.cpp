@@ -83,7 +83,8 @@ J noise_levels_json(const std::vector<OutputNoise>& levels) {
   for (const auto& n : levels)
     noise[n.output] = {{"sigma", num(n.estimate.sigma)}, {"method", noise_method_name(n.estimate.method)},
                        {"record", n.record}, {"model", n.model}, {"reason", n.estimate.reason},
-                       {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)}};
+                       {"quantisation_step", n.estimate.quantisation_step > 0 ? num(n.estimate.quantisation_step) : J(nullptr)},
+                       {"ar_pole", n.estimate.ar_pole != 0 ? num(n.estimate.ar_pole) : J(nullptr)}};
   return noise;
 }
 
@@ -101,7 +102,9 @@ J data_hypothesis_json(const Diagnosis& d) {
 J residual_tests_json(const Diagnosis& d, const ResidualTests& t) {
   J b = J::object();
   for (std::size_t i = 0; i < t.bound.size() && i < d.outputs.size(); ++i) b[d.outputs[i]] = num(t.bound[i]);
-  return {{"falsified", t.falsified}, {"white", t.white}, {"worst_autocorrelation_z", num(t.worst_autocorrelation_z)},
+  J w = J::object();  // the AR(1) pole the whiteness test whitened each output's residual by
+  for (std::size_t i = 0; i < t.whitened_by.size() && i < d.outputs.size(); ++i) w[d.outputs[i]] = num(t.whitened_by[i]);
+  return {{"falsified", t.falsified}, {"white", t.white}, {"whitened_by", w}, {"worst_autocorrelation_z", num(t.worst_autocorrelation_z)},
           {"white_threshold", num(t.white_threshold)}, {"independent", t.independent}, {"within_noise", t.within_noise()},
           {"worst_z", num(t.worst_z)}, {"z_threshold", num(t.z_threshold)}, {"worst_signal", t.worst_signal}, {"bound", b}};
 }

@@ -21,7 +21,11 @@ std::string ResidualTests::summary() const {
   o.precision(3);
   o << (falsified ? "the linearised output error is falsified under |e| <= " : "the linearised output error is consistent with |e| <= ");
   for (std::size_t j = 0; j < bound.size(); ++j) o << (j ? ", " : "") << bound[j];
-  o << "; residual " << (white ? "white" : "not white") << " (autocorrelation " << worst_autocorrelation_z
+  bool whitened = false;
+  for (double a : whitened_by) whitened = whitened || a != 0;
+  o << "; residual " << (whitened ? "whitened by its noise's AR(1) pole (" : "");
+  for (std::size_t j = 0; whitened && j < whitened_by.size(); ++j) o << (j ? ", " : "a = ") << whitened_by[j];
+  o << (whitened ? ") " : "") << (white ? "white" : "not white") << " (autocorrelation " << worst_autocorrelation_z
     << " standard deviations at lag " << worst_lag << ", threshold " << white_threshold << ")";
   o << "; largest correlation with the model's signals " << worst_z << " standard deviations (threshold " << z_threshold << ")";
   if (!worst_signal.empty()) o << ", " << worst_signal;
@@ -51,9 +55,16 @@ Eigen::VectorXd autocorrelation(const Eigen::VectorXd& x, Eigen::Index K) {
 
 Eigen::VectorXd centred(const Eigen::VectorXd& x) { return (x.array() - x.mean()).matrix(); }
 
+// r_t - a r_{t-1}, t = 1 .. N-1: white when r is AR(1) noise of pole a (r itself when a = 0).
+Eigen::VectorXd whitened(const Eigen::VectorXd& r, double a) {
+  if (a == 0 || r.size() < 2) return r;
+  return r.tail(r.size() - 1) - a * r.head(r.size() - 1);
+}
+
 }  // namespace
 
-ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& p, const SimulationResult& at, const std::vector<double>& sigma) {
+ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& p, const SimulationResult& at, const std::vector<double>& sigma,
+                            const std::vector<double>& noise_pole) {
   ResidualTests t;
   const Eigen::MatrixXd& Y = sim.measured();
   const Eigen::Index N = Y.rows(), ny = Y.cols();
@@ -105,11 +116,13 @@ ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::
     t.white_threshold = boost::math::quantile(
         boost::math::complement(boost::math::normal(), 0.01 / (2.0 * static_cast<double>(pos.size() * static_cast<std::size_t>(ny)))));
     for (Eigen::Index j = 0; j < ny; ++j) {
-      const Eigen::VectorXd r = centred(R.col(j));
+      const double a = static_cast<std::size_t>(j) < noise_pole.size() ? noise_pole[static_cast<std::size_t>(j)] : 0.0;
+      t.whitened_by.push_back(a);
+      const Eigen::VectorXd r = centred(whitened(R.col(j), a));
       if (!(r.norm() > 0)) continue;
       const Eigen::VectorXd rr = autocorrelation(r, std::min(K, pos.back()));
       for (Eigen::Index l : pos) {
-        const double z = std::abs(rr[l]) * std::sqrt(static_cast<double>(N));
+        const double z = std::abs(rr[l]) * std::sqrt(static_cast<double>(r.size()));
         if (z > t.worst_autocorrelation_z) t.worst_autocorrelation_z = z, t.worst_lag = static_cast<int>(l);
       }
     }

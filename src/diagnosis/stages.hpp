@@ -108,6 +108,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
 // ---- noise_floor.cpp
 struct NoiseFloor {
   std::vector<double> sigma;  // per output (estimates: sets/data/noise_level.hpp)
+  std::vector<double> pole;   // the noise's AR(1) pole per output when its colour was verified, else 0
   double cost = 0;            // the misfit (cost_of units) the noise alone gives
   std::string note;           // how sigma was estimated
 };

@@ -98,6 +98,17 @@ TEST(NoiseLevel, ColouredNoiseIsExtrapolatedUnderTheSignal) {
   EXPECT_EQ(e.method, NoiseMethod::residual_coloured) << e.reason;
   EXPECT_NEAR(e.sigma / rms(noise), 1.0, 0.3) << e.reason;
   // The white floor alone would read the noise's top band only: sqrt((1 - a) / (1 + a)) = 1/3.
+  // The pole is said (the residual tests whiten by it).
+  EXPECT_NEAR(e.ar_pole, 0.8, 0.03) << e.reason;
+}
+
+TEST(NoiseLevel, WhiteNoiseHasNoPoleToWhitenBy) {
+  const int N = 16384;
+  const VectorXd u = multisine(N, 0.001, 0.05, 1, 5);
+  const VectorXd clean = resonance(u, 0.02, 0.1);
+  const VectorXd noise = 1e-2 * rms(clean) * white(N, 1.0, 6);
+  const NoiseLevelEstimate e = estimate_noise(clean + noise, 0.98 * clean, u);
+  EXPECT_LT(std::abs(e.ar_pole), 0.03) << e.reason;  // white: 0, or the a = 0 shape verified
 }
 
 TEST(NoiseLevel, ColouredNoiseIsExtrapolatedPastAnOctaveOfModelError) {
@@ -117,6 +128,8 @@ TEST(NoiseLevel, ColouredNoiseIsExtrapolatedPastAnOctaveOfModelError) {
   EXPECT_EQ(e.method, NoiseMethod::residual_coloured) << e.reason;
   EXPECT_NEAR(e.sigma / rms(noise), 1.0, 0.3) << e.reason;
   // The white floor would read sqrt((1 - a) / (1 + a)) = 0.23 of it.
+  // The pole is the noise's, read around the octave of model error, not bent by it.
+  EXPECT_NEAR(e.ar_pole, 0.9, 0.03) << e.reason;
 }
 
 TEST(NoiseLevel, QuantisedOutputGivesTheQuantisationFloor) {

@@ -30,7 +30,7 @@ TEST(Augment, CoulombPlantFitsBetterAndTheIntervalHoldsTheTrueFrictionLevel) {
   s.options.varying_segments = 10;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
   const HypothesisSearch h = search_hypotheses(s.c(), nominal, noise, s.d);
   ASSERT_EQ(s.d.effects.size(), 1u);
   augment(s.c(), nominal, h, s.d);

@@ -28,7 +28,7 @@ HypothesisSearch search(test::StageRun& s) {
   s.options.varying_segments = 10;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
   return search_hypotheses(s.c(), nominal, noise, s.d);
 }
 
@@ -38,7 +38,7 @@ std::vector<DiagnosedEffect> named_alone(const SyntheticPlant& plant) {
   s.options.max_effects = 1;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
   search_hypotheses(s.c(), nominal, noise, s.d);
   return s.d.effects;
 }
@@ -82,7 +82,7 @@ TEST(Hypotheses, MirrorSensorCalibratedFromTheFileValuesIsRefinedWhateverItsScre
   s.options.max_effects = 1;
   const NominalFit nominal = calibrate_nominal(s.c(), s.d);
   const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
-  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
   search_hypotheses(s.c(), nominal, noise, s.d);
   ASSERT_FALSE(s.d.effects.empty());
   EXPECT_EQ(s.d.effects[0].name, "absolute_value_sensor");

@@ -25,6 +25,8 @@ TEST(NoiseFloor, EstimateIsWithinAFactorTwoOfTheKnownNoise) {
     ASSERT_EQ(s.d.noise.size(), 1u);
     EXPECT_EQ(s.d.noise[0].output, "x_meas");
     EXPECT_EQ(s.d.noise[0].estimate.sigma, noise.sigma[0]);
+    ASSERT_EQ(noise.pole.size(), 1u);  // the pole the residual tests whiten by: the estimate's
+    EXPECT_EQ(s.d.noise[0].estimate.ar_pole, noise.pole[0]);
     EXPECT_TRUE(s.d.noise[0].record == "estimation" || s.d.noise[0].record == "validation") << s.d.noise[0].record;
     const Eigen::VectorXd y = s.exact->measured().col(0);
     const double spread = (y.array() - y.mean()).matrix().squaredNorm();

@@ -1,10 +1,13 @@
-// Residual tests: a correct model with white or coloured (AR(1)) noise is within the noise; a
-// model that leaves Coulomb friction out is not.
+// Residual tests: a correct model with white noise is within the noise, and with coloured (AR(1))
+// noise once the residual is whitened by the pole the noise estimate reads from it; a model that
+// leaves Coulomb friction out is not, with either noise.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
+#include "sets/data/noise_level.hpp"
 #include "sets/data/simulation.hpp"
 #include "sets/diagnosis/calibration.hpp"
 #include "sets/diagnosis/residual_tests.hpp"
@@ -19,6 +22,19 @@ ResidualTests calibrated_tests(const ModelFile& nominal, const Recording& data, 
   Simulator s(nominal, data, {10});
   const auto cal = calibrate(s, s.parameter_values(), s.free_parameters());
   return test_residual(s, cal.parameters, s.simulate(cal.parameters), {sigma});
+}
+
+// The same with the noise level and AR(1) pole estimated from the calibrated residual, as the
+// diagnosis does (sets/data/noise_level.hpp); `estimate` receives the estimate.
+ResidualTests tests_with_estimated_noise(const ModelFile& nominal, const Recording& data, NoiseLevelEstimate& estimate) {
+  Simulator s(nominal, data, {10});
+  const auto cal = calibrate(s, s.parameter_values(), s.free_parameters());
+  const SimulationResult at = s.simulate(cal.parameters);
+  Eigen::MatrixXd u(data.rows(), 1);
+  const auto& col = data.column(nominal.inputs.at(0).second);
+  u.col(0) = Eigen::Map<const Eigen::VectorXd>(col.data(), data.rows());
+  estimate = estimate_noise(s.measured().col(0), at.outputs.col(0), u);
+  return test_residual(s, cal.parameters, at, {estimate.sigma}, {estimate.ar_pole});
 }
 
 // The clean axis' estimation record with its noise replaced by AR(1) noise of pole a, marginal std sigma.
@@ -58,6 +74,38 @@ TEST(ResidualTests, CorrectModelWithColouredNoiseIsInsideTheBoundButNotWhite) {
     EXPECT_FALSE(t.falsified) << "AR pole " << a << ": " << t.summary();
     EXPECT_TRUE(t.independent) << "AR pole " << a << ": " << t.summary();
     EXPECT_FALSE(t.white) << "AR pole " << a << ": " << t.summary();
+    EXPECT_FALSE(t.within_noise());
+  }
+}
+
+TEST(ResidualTests, CorrectModelWithColouredNoiseIsTheNoiseReadFromIt) {
+  // Whitened by the AR(1) pole the noise estimate reads (from the band above the signal), the
+  // residual of the correct model is white: nothing is missing (on the raw residual, above, not).
+  // (A pole above the estimate's largest, 0.9, is read as 0.9: the whitened residual may then
+  // stay coloured, "not white" as before.)
+  const SyntheticPlant p = synthetic_plant("clean_axis");
+  const double sigma = 3 * p.noise_sigma.at(0);
+  for (double a : {0.5, 0.8}) {
+    NoiseLevelEstimate e;
+    const ResidualTests t = tests_with_estimated_noise(p.nominal, with_ar_noise(p, a, sigma, 5), e);
+    EXPECT_EQ(e.method, NoiseMethod::residual_coloured) << "AR pole " << a << ": " << e.reason;
+    EXPECT_NEAR(e.ar_pole, a, 0.05) << e.reason;
+    EXPECT_TRUE(t.white) << "AR pole " << a << ": " << t.summary();
+    EXPECT_TRUE(t.within_noise()) << "AR pole " << a << ": " << t.summary();
+  }
+}
+
+TEST(ResidualTests, MissingCoulombFrictionInColouredNoiseIsNotWhitenedAway) {
+  // The guard: the pole is read above the signal's band, so a missing effect's residual, which
+  // lives in that band, stays in the whitened residual. With a noise level so large (20x the
+  // plant's) that the bound cannot falsify the model, the whitened residual is still not white.
+  const SyntheticPlant p = synthetic_plant("coulomb_friction");
+  for (double a : {0.5, 0.8, 0.95}) {
+    NoiseLevelEstimate e;
+    const ResidualTests t = tests_with_estimated_noise(p.nominal, with_ar_noise(p, a, 20 * p.noise_sigma.at(0), 5), e);
+    EXPECT_NEAR(e.ar_pole, std::min(a, 0.9), 0.05) << e.reason;  // the noise's pole, not bent by the friction
+    EXPECT_FALSE(t.falsified) << "AR pole " << a << ": " << e.reason << "; " << t.summary();
+    EXPECT_FALSE(t.white) << "AR pole " << a << ": " << e.reason << "; " << t.summary();
     EXPECT_FALSE(t.within_noise());
   }
 }

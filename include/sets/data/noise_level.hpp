@@ -28,6 +28,10 @@ struct NoiseLevelEstimate {
   NoiseMethod method = NoiseMethod::output_spectrum;
   std::string reason;               // what was found, in one line
   double quantisation_step = 0;     // the output's lattice step q when it is quantised (0: not)
+  /// The AR(1) pole a of the noise when its colour was verified from 1/32 to 1/2 cycles/sample
+  /// (method residual_coloured, or output_spectrum read as coloured); 0 otherwise (white, or not
+  /// known: repeats and the white floor say nothing of the colour). Read above the signal's band.
+  double ar_pole = 0;
 };
 
 /// The noise level of `y`. Optional evidence (pass empty objects when absent):
