@@ -317,15 +317,20 @@ void set_bounded_error_interval(EffectParameter& ep, double min, double max) {
   ep.hi = std::min(ep.hi, ep.ee_hi);
 }
 
+namespace {
+
+void nominal_is_final(const NominalFit& nominal, Diagnosis& d) {
+  d.augmented = d.nominal;
+  d.fit_augmented_estimation = d.fit_nominal_estimation;
+  d.fit_augmented_validation = d.fit_nominal_validation;
+  d.augmented_estimation = nominal.simulation.outputs;
+  d.augmented_validation = nominal.validation_outputs;
+}
+
+}  // namespace
+
 void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch& search, Diagnosis& d) {
-  if (d.effects.empty()) {
-    d.augmented = d.nominal;
-    d.fit_augmented_estimation = d.fit_nominal_estimation;
-    d.fit_augmented_validation = d.fit_nominal_validation;
-    d.augmented_estimation = nominal.simulation.outputs;
-    d.augmented_validation = nominal.validation_outputs;
-    return;
-  }
+  if (d.effects.empty()) return nominal_is_final(nominal, d);
   c.say("refining the augmented model and computing parameter uncertainty intervals");
   ModelFile current = search.current;  // its values refined with the final substeps here
   const std::vector<int> fr = Simulator(current, c.estimation, {c.options.final_substeps}).free_parameters();
@@ -334,7 +339,18 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
   GlobalStep step = global_step(c, current, search.chosen, fr, o, true, d);
   if (!step.estimate().ok || step.estimate().cost > nominal.cost)
     step = global_step_again(c, current, search.chosen, fr, o, nominal.cost, std::move(step), d);
-  if (!step.estimate().ok) throw NumericalError("the augmented model blows up with the full substeps");
+  if (!step.estimate().ok) {
+    // No optimum can be simulated with the full substeps: a model that blows up is no answer, so
+    // no effect is kept (random plant 5 001 610: a nominal with a negative damping, which one sine
+    // cannot rule out, plus the output saturation the search found).
+    std::string names;
+    for (const auto& e : d.effects) names += (names.empty() ? "" : ", ") + e.name;
+    c.say("the augmented model (" + names + ") blows up with the full substeps from every optimum: no effect is kept");
+    d.bound_note += (d.bound_note.empty() ? "" : "; ") + std::string("the augmented model (") + names +
+                    ") blows up with the full substeps from every optimum: no effect is kept";
+    d.effects.clear();
+    return nominal_is_final(nominal, d);
+  }
   const CalibrationResult& r = step.estimate();
   store_values(current, r.parameters);
   store_augmented(c, current, r, d);

@@ -112,7 +112,10 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::
                             const CalibrationOptions& options) {
   CalibrationResult r = evaluate(sim, start);
   r.free = free;
-  if (free.empty() || !r.ok) return r;
+  if (free.empty() || !r.ok) {
+    r.converged = r.ok;
+    return r;
+  }
   int evaluations = 1;
   Residual res;
   res.sim = &sim;
@@ -151,14 +154,20 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::
   lm.parameters.ftol = options.tolerance;
   lm.parameters.xtol = options.tolerance;
   lm.parameters.factor = 10;
-  lm.minimize(z);
+  const auto status = lm.minimize(z);
   const Eigen::VectorXd best = res.parameters(z);
   const auto& at_best = diff.simulated(best);  // LM's last accepted point: simulated already
   CalibrationResult out = result_of(sim, best, at_best.yhat, at_best.ok);
   out.free = free;
   out.evaluations = evaluations;
+  // Eigen counts the Jacobian's simulations in maxfev too: a budget of max_evaluations / (n + 1)
+  // simulations in all, which a poorly excited model with several parameters can spend far from
+  // its optimum.
+  out.converged = status != Eigen::LevenbergMarquardtSpace::TooManyFunctionEvaluation &&
+                  status != Eigen::LevenbergMarquardtSpace::UserAsked;
   if (!out.ok || out.cost > r.cost) {  // never return something worse than the start
     r.evaluations = out.evaluations;
+    r.converged = out.converged;
     return r;
   }
   return out;

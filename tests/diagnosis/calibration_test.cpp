@@ -1,6 +1,7 @@
 // Calibration by output error (src/diagnosis/calibration.cpp): fits in percent, Levenberg-Marquardt
-// recovering the parameters of a noise-free first-order plant from a wrong start, bounds kept by
-// clamping, and a blow-up reported as ok = false rather than thrown.
+// recovering the parameters of a noise-free first-order plant from a wrong start, whether it stopped
+// on its tolerances or its budget, bounds kept by clamping, and a blow-up reported as ok = false
+// rather than thrown.
 
 #include "sets/diagnosis/calibration.hpp"
 
@@ -70,6 +71,31 @@ TEST(Calibration, RecoversTheParametersOfANoiseFreeFirstOrderPlant) {
   const CalibrationResult only_b = calibrate(sim, sim.parameter_values(), {1});
   EXPECT_EQ(only_b.parameters[0], 1.0);
   EXPECT_LT(only_b.fit[0], c.fit[0]);
+}
+
+TEST(Calibration, SaysWhetherItStoppedOnItsTolerancesOrOnItsBudget) {
+  const Recording r = first_order_record();
+  ModelFile m = parse_model(kFirstOrder, "nominal");
+  m.parameter("a")->value = 1.0;
+  m.parameter("b")->value = 1.0;
+  const Simulator sim(m, r);
+  const CalibrationResult full = calibrate(sim, sim.parameter_values(), {0, 1});
+  ASSERT_TRUE(full.ok);
+  EXPECT_TRUE(full.converged);
+  // Eigen counts the Jacobian's simulations in its budget: max_evaluations / (n + 1) = 4 in all,
+  // one Jacobian and one step, far from the optimum.
+  CalibrationOptions o;
+  o.max_evaluations = 12;
+  const CalibrationResult cut = calibrate(sim, sim.parameter_values(), {0, 1}, o);
+  ASSERT_TRUE(cut.ok);
+  EXPECT_FALSE(cut.converged);
+  EXPECT_LE(cut.evaluations, 5);
+  EXPECT_LT(cut.fit[0], full.fit[0]);
+  // Continued from where it stopped, it reaches the same optimum.
+  const CalibrationResult more = calibrate(sim, cut.parameters, {0, 1});
+  EXPECT_TRUE(more.converged);
+  EXPECT_NEAR(more.parameters[0], 2.0, 1e-4);
+  EXPECT_TRUE(calibrate(sim, sim.parameter_values(), {}).converged);  // nothing free: nothing to do
 }
 
 TEST(Calibration, BoundsOfTheModelFileAreKept) {

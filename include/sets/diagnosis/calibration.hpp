@@ -28,6 +28,7 @@ struct CalibrationResult {
   double cost = 0;             // sum over outputs of (1 - fit/100)^2
   int evaluations = 0;
   bool ok = false;             // false when even the start blows up
+  bool converged = false;      // LM stopped on its tolerances, not on max_evaluations (calibrate only)
 };
 
 /// Per-output fits of simulated outputs against measured ones.
