@@ -31,7 +31,8 @@ void store_values(ModelFile& m, const Eigen::VectorXd& p) {
 CalibrationResult refine_with_final_substeps(const Context& c, const Simulator& exact, const Eigen::VectorXd& coarse,
                                              const std::vector<int>& free, const CalibrationOptions& options) {
   if (c.options.screening_substeps >= c.options.final_substeps) return evaluate(exact, coarse);
-  // From a nearby start Levenberg-Marquardt needs a few Jacobians: at most 6, each n + 1 simulations.
+  // From a nearby start Levenberg-Marquardt needs few steps: 6 (n + 1) evaluations are Eigen's maxfev
+  // = 6 simulations, Jacobians included, so one iteration (see calibrate()).
   CalibrationOptions o = options;
   o.max_evaluations = 6 * (static_cast<int>(free.size()) + 1);
   return calibrate(exact, coarse, free, o);
