@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "sets/core/error.hpp"
 #include "sets/data/simulation.hpp"
@@ -84,18 +85,23 @@ TEST(CalibrateNominal, SaysWhenTheNominalCannotBeBroughtNearTheData) {
   EXPECT_FALSE(d.nothing_missing);
 }
 
+namespace {
+
+// x' = v, v' = u - k x - c v with a known unit mass: the resonance of the two tests below.
+std::string resonance(double k, double c) {
+  return R"({"time": "t", "inputs": {"u": "u"}, "parameters": {"m": {"value": 1.0, "fixed": true}, "k": )" +
+         std::to_string(k) + R"(, "c": )" + std::to_string(c) + R"(}, "states": {"x": 0.0, "v": 0.0},
+    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
+}
+
+}  // namespace
+
 TEST(CalibrateNominal, OptimumOfTheCoarseStepThatDivergesAtTheFineStepIsRejected) {
   // A lightly damped resonance sampled at 4.5 samples per period. One RK4 substep per sample
   // damps the oscillation numerically (|R(i w h)| < 1), so the output error calibrated with that
   // step wants a negative damping c, whose fine-step simulation grows without bound (random plant
   // 5000023, two masses, went that way: fits of -1e111 % and a noise "estimate" 5e92 x the truth).
-  const std::string truth = R"({"time": "t", "inputs": {"u": "u"},
-    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": 1.0, "c": 0.01}, "states": {"x": 0.0, "v": 0.0},
-    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
-  const std::string nominal = R"({"time": "t", "inputs": {"u": "u"},
-    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": 1.3, "c": 0.05}, "states": {"x": 0.0, "v": 0.0},
-    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
-  const SyntheticPlant p = test::simulated_plant(truth, nominal, 1500, 1.4, {"u", -1, 1, 5, 30}, 0.02, 7);
+  const SyntheticPlant p = test::simulated_plant(resonance(1.0, 0.01), resonance(1.3, 0.05), 1500, 1.4, {"u", -1, 1, 5, 30}, 0.02, 7);
   DiagnosisOptions opt;
   opt.screening_substeps = 1;
   {
@@ -121,13 +127,7 @@ TEST(CalibrateNominal, TheNominalIsTheOptimumOfTheFinalStepNotOfTheScreeningStep
   // the noise resolves, and the parameters calibrated with it absorb that. Evaluated with the
   // final substeps, that optimum leaves a model error of several noise levels (random plant
   // 5 001 765 went that way: a clean plant called unexplained, its noise read 0.39x the truth).
-  const std::string truth = R"({"time": "t", "inputs": {"u": "u"},
-    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": 1.0, "c": 0.2}, "states": {"x": 0.0, "v": 0.0},
-    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
-  const std::string nominal = R"({"time": "t", "inputs": {"u": "u"},
-    "parameters": {"m": {"value": 1.0, "fixed": true}, "k": 1.4, "c": 0.3}, "states": {"x": 0.0, "v": 0.0},
-    "derivatives": {"x": "v", "v": "(u - k*x - c*v)/m"}, "outputs": {"x": "x_meas"}})";
-  const SyntheticPlant p = test::simulated_plant(truth, nominal, 3000, 0.63, {"u", -1, 1, 5, 30}, 0.003, 12);
+  const SyntheticPlant p = test::simulated_plant(resonance(1.0, 0.2), resonance(1.4, 0.3), 3000, 0.63, {"u", -1, 1, 5, 30}, 0.003, 12);
   DiagnosisOptions opt;
   opt.screening_substeps = 1;
   const Simulator fine(p.nominal, p.estimation, {opt.final_substeps});
