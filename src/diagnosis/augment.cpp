@@ -345,9 +345,9 @@ void augment(const Context& c, const NominalFit& nominal, const HypothesisSearch
     // cannot rule out, plus the output saturation the search found).
     std::string names;
     for (const auto& e : d.effects) names += (names.empty() ? "" : ", ") + e.name;
-    c.say("the augmented model (" + names + ") blows up with the full substeps from every optimum: no effect is kept");
-    d.bound_note += (d.bound_note.empty() ? "" : "; ") + std::string("the augmented model (") + names +
-                    ") blows up with the full substeps from every optimum: no effect is kept";
+    const std::string why = "the augmented model (" + names + ") blows up with the full substeps from every optimum: no effect is kept";
+    c.say(why);
+    d.bound_note += (d.bound_note.empty() ? "" : "; ") + why;
     d.effects.clear();
     return nominal_is_final(nominal, d);
   }

@@ -56,10 +56,8 @@ void conclude(Diagnosis& d) {
   }
   d.unexplained = true;
   d.where = where_of(d);
-  bool whitened = false;
-  for (double a : d.nominal_tests.whitened_by) whitened = whitened || a != 0;
   const std::string what = d.nominal_tests.falsified ? "The mismatch is real but no catalogue effect explains it ("
-                           : whitened ? "The residual is inside the noise bound but not the coloured noise read from it (a "
+                           : d.nominal_tests.any_whitened() ? "The residual is inside the noise bound but not the coloured noise read from it (a "
                                         "mismatch that no catalogue effect explains, or noise of another colour; "
                                       : "The residual is inside the noise bound but not white (coloured measurement noise, or a "
                                         "mismatch that no catalogue effect explains; ";

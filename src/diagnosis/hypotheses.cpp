@@ -75,8 +75,8 @@ Setup setup_of(const Context& c, const ToRefine& r, const Scales& known) {
   // estimate); each with max_evaluations = 80 (n + 1), which calibrate() turns into Eigen's maxfev
   // = 80 simulations, Jacobians included: about 80 / (n + 2) iterations (a quarter of the
   // refinements end on it; 80 real iterations were tried and not landed: answers no better, three
-  // tests worse, docs/reproduction/diagnosis.md, tenth session). With a third of it the Stribeck law stopped at a
-  // third of the misfit reduction it reaches.
+  // tests worse, docs/reproduction/diagnosis.md, tenth session). With a third of it the Stribeck
+  // law stopped at a third of the misfit reduction it reaches.
   u.options.max_evaluations = 80 * static_cast<int>(u.free.size() + 1);
   u.from = r.starts;
   if (u.from.empty()) u.from.push_back(s.parameter_values());

@@ -21,8 +21,7 @@ std::string ResidualTests::summary() const {
   o.precision(3);
   o << (falsified ? "the linearised output error is falsified under |e| <= " : "the linearised output error is consistent with |e| <= ");
   for (std::size_t j = 0; j < bound.size(); ++j) o << (j ? ", " : "") << bound[j];
-  bool whitened = false;
-  for (double a : whitened_by) whitened = whitened || a != 0;
+  const bool whitened = any_whitened();
   o << "; residual " << (whitened ? "whitened by its noise's AR(1) pole (" : "");
   for (std::size_t j = 0; whitened && j < whitened_by.size(); ++j) o << (j ? ", " : "a = ") << whitened_by[j];
   o << (whitened ? ") " : "") << (white ? "white" : "not white") << " (autocorrelation " << worst_autocorrelation_z

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct ResidualTests {
   std::vector<double> bound;  // delta_j per output
   std::vector<double> whitened_by;  // the AR(1) pole the residual was whitened by, per output (0: not)
   bool within_noise() const { return !falsified && white; }
+  bool any_whitened() const {  // was the whiteness test run on a whitened residual for some output?
+    return std::any_of(whitened_by.begin(), whitened_by.end(), [](double a) { return a != 0; });
+  }
   std::string summary() const;
 };
 
