@@ -96,8 +96,10 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   const NominalFit nominal = calibrate_nominal({model, est, val, opt, exact, fast, exact_val.get(), say}, d);  // 1.
   // The calibrated values can have faster modes than the file's: a screening step that resolved
   // the file's values may blow up on them (RK4 outside its stability region). Then the step is
-  // chosen again at the calibrated values, finer. (Not for a mere loss of precision: the screening
-  // optima are refined with the final substeps anyway, and Silverbox's screening would double.)
+  // chosen again at the calibrated values, finer, by the first choice's test (a step just inside
+  // the stability interval is finite but can misplace the mode, |R(h lambda)| near 1). Not when
+  // it merely lost precision: the screening optima are refined with the final substeps anyway,
+  // and Silverbox's screening would double.
   // When the file's values could not be simulated, no step was chosen at them (the final one was
   // used): it is chosen at the calibrated values.
   int sub = opt.screening_substeps;

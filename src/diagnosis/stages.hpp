@@ -93,8 +93,8 @@ std::string fmt(double x, int prec = 3);
 std::string fixed1(double x);
 
 // ---- 1. calibrate
-/// The fewest RK4 substeps of {1, 2, 5} (at least `at_least`) whose fits at the parameters `p`
-/// agree with the final substeps within 0.2 points; else final_substeps.
+/// The fewest RK4 substeps (at least `at_least`, every count below final_substeps tried) whose
+/// fits at the parameters `p` agree with the final substeps within 0.2 points; else final_substeps.
 int screening_substeps(const ModelFile& model, const Recording& estimation, const Simulator& exact, const Eigen::VectorXd& p,
                        int final_substeps, int at_least = 1);
 

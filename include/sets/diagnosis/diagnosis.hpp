@@ -23,8 +23,8 @@
 namespace sets {
 
 struct DiagnosisOptions {
-  int screening_substeps = 0;   // RK4 substeps while hypotheses are calibrated; 0: the fewest of
-                                // 1, 2, 5 whose fits agree with final_substeps within 0.2 points
+  int screening_substeps = 0;   // RK4 substeps while hypotheses are calibrated; 0: the fewest (1, 2,
+                                // 3, ...) whose fits agree with final_substeps within 0.2 points
   int final_substeps = 10;      // RK4 substeps for the reported fits
   int max_effects = 3;
   double min_cost_reduction = 0.10;  // a hypothesis must remove >= 10 % of the squared misfit, and its
