@@ -83,6 +83,12 @@ OutputErrorIntervals output_error_intervals(const Eigen::MatrixXd& J, const Eige
                                             const Eigen::VectorXd& estimate, const std::vector<int>& free,
                                             const std::vector<double>& scale,
                                             const std::vector<double>* given_delta = nullptr);
+/// Are the same strips, with these bounds (one per output), certified inconsistent? (No point of
+/// the linearised model fits within them; an LP that cannot decide is "not falsified".) Stage 3's
+/// nested rule asks it of a special case, linearised at its own optimum, under the richer law's
+/// bounds.
+bool linearised_strips_falsified(const Eigen::MatrixXd& J, const Eigen::MatrixXd& R, const std::vector<double>& scale,
+                                 std::vector<double> delta);
 std::string fmt(double x, int prec = 3);
 std::string fixed1(double x);
 

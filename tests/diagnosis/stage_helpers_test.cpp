@@ -117,6 +117,22 @@ TEST(StageHelpers, OutputErrorIntervalsContainTheTruthOfALinearProblem) {
   EXPECT_EQ(output_error_intervals(Jl, Rl, estimate, {1, 2}, {2.0, 1.0}).stride, 2);
 }
 
+// A model whose residual has a part its parameters cannot produce (a square wave of amplitude 1
+// beside a slow sine and a constant) is falsified by strips narrower than that part, and not by
+// strips that hold it: the nested rule's question "does the special case fit within the richer
+// law's bound".
+TEST(StageHelpers, LinearisedStripsAreFalsifiedOnlyByABoundTheResidualCannotMeet) {
+  const int N = 400;
+  Eigen::MatrixXd J(N, 2), R(N, 1);
+  for (int k = 0; k < N; ++k) {
+    J(k, 0) = std::sin(0.05 * k), J(k, 1) = 1.0;
+    R(k, 0) = 0.3 * J(k, 0) + 0.2 + ((k / 7) % 2 ? 1.0 : -1.0);
+  }
+  EXPECT_TRUE(linearised_strips_falsified(J, R, {1.0, 1.0}, {0.5}));
+  EXPECT_FALSE(linearised_strips_falsified(J, R, {1.0, 1.0}, {1.05}));  // the square wave fits within it
+  EXPECT_FALSE(linearised_strips_falsified(J, R, {2.0, 0.5}, {1.05}));  // scales change the units only
+}
+
 TEST(StageHelpers, NumbersForTheReport) {
   EXPECT_EQ(fmt(0.000123456), "0.000123");
   EXPECT_EQ(fmt(123456.0, 4), "1.235e+05");
