@@ -235,3 +235,36 @@ TEST(Hypotheses, RicherLawIsNamedWhenTheDataExcludeItsSpecialCaseItself) {
   EXPECT_NE(named[0].evidence.find("constant_offset+coulomb_friction, its special case"), std::string::npos)
       << named[0].evidence;
 }
+
+// A hypothesis adds a term to the current model, so at its optimum it cannot fit worse than that
+// model (its term switched off). On this two-mass plant (a constant offset and a cubic stiffness;
+// the nominal calibrates to a fit of 15 %) the screening's starts put every hypothesis of the
+// first round where it fitted worse than the current model (the offset at 6.8x its misfit) and
+// nothing was named on main f9dab8c; refined again from the current point with the term switched
+// off, both are named. The stages run with the steps diagnose() chooses for this plant (the
+// nominal calibrated at the coarse step, the search at the finer one its optimum needs): with
+// one step for both, the calibrated nominal is another and main named both too. (Seed 5 001 938:
+// held out in the tenth session, development since, docs/reproduction/diagnosis.md.)
+TEST(Hypotheses, HypothesisThatEndsWorseThanTheModelItNestsIsRefinedFromThatModel) {
+  const SyntheticPlant plant = random_plant(5001938);
+  ASSERT_EQ(plant.effects.size(), 2u);
+  test::StageRun s(plant, true, 0, 10);
+  s.options.max_effects = 2;
+  DiagnosisOptions coarse = s.options;
+  coarse.screening_substeps = screening_substeps(s.model, s.estimation, *s.exact, s.exact->parameter_values(), 10);
+  const Simulator fast(s.model, s.estimation, {coarse.screening_substeps});
+  const Context calibration{s.model, s.estimation, &s.validation, coarse, *s.exact, fast, s.exact_validation.get(), s.c().say};
+  const NominalFit nominal = calibrate_nominal(calibration, s.d);
+  s.options.screening_substeps = evaluate(fast, nominal.calibration.parameters).ok
+                                     ? coarse.screening_substeps
+                                     : screening_substeps(s.model, s.estimation, *s.exact, nominal.calibration.parameters, 10,
+                                                          coarse.screening_substeps + 1);
+  ASSERT_EQ(s.options.screening_substeps, 10);  // s.c()'s simulators are at 10
+  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
+  s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
+  search_hypotheses(s.c(), nominal, noise, s.d);
+  std::string names;
+  for (const auto& e : s.d.effects) names += e.name + " ";
+  for (const auto& truth : plant.effects)
+    EXPECT_NE(names.find(truth.name), std::string::npos) << truth.name << " not named; named: " << names;
+}

@@ -20,14 +20,15 @@ struct StageRun {
   Diagnosis d;
 
   /// The plant's nominal and records (the first `samples` of each when > 0, to keep a test
-  /// short); screening with the final substeps (no substep search), one thread, no progress lines.
-  explicit StageRun(const SyntheticPlant& plant, bool with_validation = true, int samples = 0)
+  /// short); screening with the final substeps (`substeps`, no substep search), one thread, no
+  /// progress lines.
+  explicit StageRun(const SyntheticPlant& plant, bool with_validation = true, int samples = 0, int substeps = 4)
       : model(with_intersample(plant.nominal)),
         estimation(first_samples(plant.estimation, samples)),
         validation(first_samples(plant.validation, samples)) {
     options.threads = 1;
-    options.final_substeps = 4;
-    options.screening_substeps = 4;
+    options.final_substeps = substeps;
+    options.screening_substeps = substeps;
     exact = std::make_unique<Simulator>(model, estimation, SimulationOptions{options.final_substeps});
     fast = std::make_unique<Simulator>(model, estimation, SimulationOptions{options.screening_substeps});
     if (with_validation)
