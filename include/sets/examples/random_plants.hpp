@@ -19,6 +19,11 @@
 
 namespace sets {
 
+/// Strong enough to matter: an effect's truth without it, calibrated on the noise-free outputs,
+/// must miss by at least this many noise levels RMS (TrueEffect::detectability); a richer law
+/// within it of its nested special case is that special case within the noise.
+constexpr double kDetectableInNoiseLevels = 2.0;
+
 struct RandomPlantOptions {
   int effects = -1;         // -1: 0, 1 or 2 drawn (30 / 40 / 30 %)
   std::string family;       // empty: drawn; else one of random_plant_families()
