@@ -356,16 +356,20 @@ bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, c
 }
 
 // Each richer law against its nested special case, the same measure as `detectable` (a record of
-// the plant drawn, never a condition of the draw): -1 for an effect without one or a failed calibration.
+// the plant drawn, never a condition of the draw): -1 for an effect without one or a failed
+// calibration. The special case holds the plant without the law (Fc = 0, no offset), so no more
+// than `detectability`: a calibration from the law's start can end in a worse local optimum.
 std::vector<double> detectability_vs_special_cases(const Build& b, const Truth& truth_of, const ModelFile& truth,
-                                                   const Recording& est, const Noise& noise, const std::vector<double>& knobs) {
+                                                   const Recording& est, const Noise& noise, const std::vector<double>& knobs,
+                                                   const std::vector<double>& detectability) {
   std::vector<double> out(truth_of.effects().size(), -1.0);
   Eigen::MatrixXd y;
   Recording clean_rec;
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (truth_of.effects()[i].special_case.empty()) continue;
     if (y.size() == 0 && !noise_free_record(b, truth, est, clean_rec, y)) return out;
-    out[i] = calibrated_miss(truth_of.with(knobs, static_cast<int>(i), nullptr, true), clean_rec, y, noise);
+    const double miss = calibrated_miss(truth_of.with(knobs, static_cast<int>(i), nullptr, true), clean_rec, y, noise);
+    if (miss >= 0) out[i] = std::min(miss, detectability[i]);
   }
   return out;
 }
@@ -464,7 +468,7 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     p.name = "random-" + std::to_string(seed);
     p.nominal = nominal_of(r, b, rec.time_col);
     // After every draw of this plant: measuring takes names from r but changes nothing drawn.
-    const std::vector<double> vs_special = detectability_vs_special_cases(b, truth_of, truth, rec.est, noise, knobs);
+    const std::vector<double> vs_special = detectability_vs_special_cases(b, truth_of, truth, rec.est, noise, knobs, detectability);
     p.nominal.name = "nominal " + b.family + " model (random plant " + std::to_string(seed) + ")";
     p.truth = truth;
     p.truth.name = "truth of random plant " + std::to_string(seed);
