@@ -242,8 +242,9 @@ class Truth {
   Truth(const Build& b, const std::vector<Effect>& effects, std::string time_col)
       : b_(b), effects_(effects), time_col_(std::move(time_col)) {}
 
-  // special_case: effect `skip` replaced by its nested special case (parameters free) instead.
-  ModelFile with(const std::vector<double>& knobs, int skip, std::vector<EffectValues>* values, bool special_case = false) const {
+  // level >= 0: effect `skip` replaced by its nested special case instead, its free parameters
+  // starting at `level` between the law's ends.
+  ModelFile with(const std::vector<double>& knobs, int skip, std::vector<EffectValues>* values, double level = -1) const {
     std::vector<Eq> eqs = b_.eqs;
     NamedTexts sampled = b_.sampled, outputs = b_.outputs;
     std::vector<ModelState> states = b_.states;
@@ -251,7 +252,7 @@ class Truth {
     for (std::size_t i = 0; i < effects_.size(); ++i) {
       EffectValues v;
       if (static_cast<int>(i) != skip) effects_[i].apply(knobs[i], eqs, sampled, outputs, states, ps, v);
-      else if (special_case) effects_[i].apply_special_case(knobs[i], eqs, ps);
+      else if (level >= 0) effects_[i].apply_special_case(knobs[i], level, eqs, ps);
       if (values) values->push_back(v);
     }
     // The truth has the damping the nominal leaves out; without the viscous effect it goes too.
@@ -356,9 +357,10 @@ bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, c
 }
 
 // Each richer law against its nested special case, the same measure as `detectable` (a record of
-// the plant drawn, never a condition of the draw): -1 for an effect without one or a failed
-// calibration. The special case holds the plant without the law (Fc = 0, no offset), so no more
-// than `detectability`: a calibration from the law's start can end in a worse local optimum.
+// the plant drawn, never a condition of the draw): -1 for an effect without one or where every
+// calibration fails. Calibrations end in local optima: the best of three starts (the special case
+// at either end of the law and midway) and of the plant without the law (`detectability`: Fc = 0,
+// no offset, a point of the special case).
 std::vector<double> detectability_vs_special_cases(const Build& b, const Truth& truth_of, const ModelFile& truth,
                                                    const Recording& est, const Noise& noise, const std::vector<double>& knobs,
                                                    const std::vector<double>& detectability) {
@@ -368,8 +370,10 @@ std::vector<double> detectability_vs_special_cases(const Build& b, const Truth& 
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (truth_of.effects()[i].special_case.empty()) continue;
     if (y.size() == 0 && !noise_free_record(b, truth, est, clean_rec, y)) return out;
-    const double miss = calibrated_miss(truth_of.with(knobs, static_cast<int>(i), nullptr, true), clean_rec, y, noise);
-    if (miss >= 0) out[i] = std::min(miss, detectability[i]);
+    for (double level : {0.0, 0.5, 1.0}) {
+      const double miss = calibrated_miss(truth_of.with(knobs, static_cast<int>(i), nullptr, level), clean_rec, y, noise);
+      if (miss >= 0) out[i] = std::min({miss, out[i] < 0 ? miss : out[i], detectability[i]});
+    }
   }
   return out;
 }
