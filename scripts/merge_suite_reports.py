@@ -4,10 +4,7 @@ campaign run one after the other or side by side) into the suite's summary figur
 `suite_report` (src/examples/diagnosis_suite.cpp) computes them for one run: one-effect plants
 first named right, two-effect plants both named, invented effects on clean plants, true values
 inside the bounded-error interval and the estimate, the noise ratio's distribution, the confusion
-matrix and per-effect precision and recall, and the second, declared figure beside the strict one
-(a richer law within 2 noise levels of its nested special case counted right when that special case
-is named; the truth column's "vs coulomb_friction 1.37 sigma"). The "meet" figure is not in the
-table and is left out.
+matrix and per-effect precision and recall. The "meet" figure is not in the table and is left out.
 
     python3 scripts/merge_suite_reports.py held_*.md
 """
@@ -16,29 +13,11 @@ import sys
 from collections import Counter, defaultdict
 
 EFFECT = re.compile(r"(?:^|, )([a-z_0-9]+) \(")
-TRUE_EFFECT = re.compile(r"(?:^|, )([a-z_0-9]+) \(([^()]*)\)")
-SPECIAL_CASE = re.compile(r"vs ([a-z_0-9]+(?: \+ [a-z_0-9]+)*) ([-+\d.e]+) sigma")
-# The generator's threshold (kDetectableInNoiseLevels, include/sets/examples/random_plants.hpp).
-DETECTABLE_IN_NOISE_LEVELS = 2.0
 
 
 def effects(cell):
     """Effect names of a 'name (where, ...)' list, in order ('none': no effect)."""
     return [] if cell.strip() == "none" else EFFECT.findall(cell.strip())
-
-
-def special_cases(cell):
-    """Per true effect: its nested special case's effects when the law is measured within the
-    threshold of it (the report prints the measure truncated, so it decides as the report did), else None."""
-    out = []
-    for _, inner in TRUE_EFFECT.findall(cell.strip()):
-        m = SPECIAL_CASE.search(inner)
-        out.append(m[1].split(" + ") if m and float(m[2]) < DETECTABLE_IN_NOISE_LEVELS else None)
-    return out
-
-
-def named_or_special(effect, special, named):
-    return effect in named or (special is not None and all(e in named for e in special))
 
 
 def rows(paths):
@@ -63,7 +42,6 @@ def main(paths):
     if not paths:
         sys.exit(__doc__)
     n = one = one_right = two = two_both = two_one = clean = invented = nothing = failed = 0
-    one_special = two_special = 0
     bounded = inside = cov = inside_estimate = 0
     seconds = 0.0
     ratios, ratios_nominal, misses = [], [], []
@@ -72,7 +50,6 @@ def main(paths):
     for path, c in rows(paths):
         n += 1
         truth, named = effects(c[2]), effects(c[3])
-        special = special_cases(c[2])
         answer = c[4]
         seconds += float(c[10])
         if answer.startswith("error"):
@@ -92,15 +69,11 @@ def main(paths):
             one += 1
             right = c[5] == "yes"
             one_right += right
-            one_special += right or (bool(named) and special[0] is not None and named[0] in special[0]
-                                     and named_or_special(truth[0], special[0], named))
             if not right:
                 misses.append(f"{c[0]}: {c[2]} -> named {c[3]} ({answer})")
         else:
             two += 1
             two_both += c[6] == "yes"
-            two_special += not answer.startswith("error") and all(
-                named_or_special(t, s, named) for t, s in zip(truth, special))
             two_one += any(t in named for t in truth)
         if len(truth) <= 1:
             confusion[truth[0] if truth else "none"][named[0] if named else "none"] += 1
@@ -113,9 +86,6 @@ def main(paths):
           f"{seconds:.1f} s of diagnosis in all\n")
     print(f"- one-effect plants, first named right: {pct(one_right, one)}")
     print(f"- two-effect plants, both named: {pct(two_both, two)} (at least one: {pct(two_one, two)})")
-    print(f"- second figure, a richer law within {DETECTABLE_IN_NOISE_LEVELS:.1f} noise levels of its nested special case "
-          f"counted right when that special case is named: one-effect plants {pct(one_special, one)}; "
-          f"two-effect plants both named {pct(two_special, two)}")
     print(f"- clean plants with an invented effect: {pct(invented, clean)} "
           f"(answered \"no physics is missing\": {pct(nothing, clean)})")
     print(f"- true values with a bounded-error interval: {pct(bounded, cov)}; inside it: {pct(inside, bounded)}")

@@ -26,29 +26,6 @@ bool SuitePlantResult::all_named() const {
   return error.empty();
 }
 
-bool named_as_special_case(const TrueEffect& t, const std::vector<std::string>& named) {
-  const double d = t.detectability_vs_special_case;
-  if (t.special_case.empty() || !(d >= 0 && d < kDetectableInNoiseLevels)) return false;
-  for (const auto& e : t.special_case)
-    if (std::find(named.begin(), named.end(), e) == named.end()) return false;
-  return true;
-}
-
-bool SuitePlantResult::first_right_or_special_case() const {
-  if (first_right()) return true;
-  if (truth.empty() || named.empty() || !error.empty()) return false;
-  const TrueEffect& t = truth.front();
-  const bool first_is_special = std::find(t.special_case.begin(), t.special_case.end(), named.front()) != t.special_case.end();
-  return first_is_special && named_as_special_case(t, named);
-}
-
-bool SuitePlantResult::all_named_or_special_case() const {
-  if (!error.empty()) return false;
-  for (const auto& t : truth)
-    if (std::find(named.begin(), named.end(), t.name) == named.end() && !named_as_special_case(t, named)) return false;
-  return true;
-}
-
 namespace {
 
 bool holds(double lo, double hi, double x) { return lo <= x && x <= hi; }
@@ -186,7 +163,7 @@ std::string coverage_misses(const std::vector<SuitePlantResult>& results) {
 
 // The counts behind the suite's figures, in one pass over the plants.
 struct SuiteTally {
-  int one = 0, one_right = 0, one_right_special = 0, two = 0, two_both = 0, two_both_special = 0, two_one = 0, clean = 0, clean_invented = 0, clean_nothing = 0, errors = 0;
+  int one = 0, one_right = 0, two = 0, two_both = 0, two_one = 0, clean = 0, clean_invented = 0, clean_nothing = 0, errors = 0;
   int cov = 0, cov_bounded = 0, cov_in = 0, cov_estimate = 0, cov_meet = 0, right_place = 0, named_true = 0;
   double seconds = 0;
   std::vector<double> ratios, ratios_nominal;
@@ -211,11 +188,9 @@ SuiteTally tally(const std::vector<SuitePlantResult>& results) {
     } else if (truth.size() == 1) {
       ++t.one;
       t.one_right += r.first_right();
-      t.one_right_special += r.first_right_or_special_case();
     } else {
       ++t.two;
       t.two_both += r.all_named();
-      t.two_both_special += r.all_named_or_special_case();
       int n = 0;
       for (const auto& e : truth) n += std::find(r.named.begin(), r.named.end(), e) != r.named.end();
       t.two_one += n >= 1;
@@ -239,7 +214,7 @@ SuiteTally tally(const std::vector<SuitePlantResult>& results) {
 }
 
 // "coulomb_friction + constant_offset 1.37 sigma": truncated to two decimals, so that the printed
-// value falls below the threshold exactly when the measured one does (merge_suite_reports.py reads it).
+// value falls below the generator's threshold exactly when the measured one does.
 std::string special_case_text(const TrueEffect& t) {
   std::ostringstream x;
   for (std::size_t k = 0; k < t.special_case.size(); ++k) x << (k ? " + " : "") << t.special_case[k];
@@ -285,9 +260,6 @@ void write_summary(std::ostream& o, const SuiteTally& t, std::size_t plants) {
     << " s per plant).\n\n";
   o << "- one-effect plants, first named right: " << pct(t.one_right, t.one) << "\n";
   o << "- two-effect plants, both named: " << pct(t.two_both, t.two) << " (at least one: " << pct(t.two_one, t.two) << ")\n";
-  o << "- second figure, a richer law within " << kDetectableInNoiseLevels
-    << " noise levels of its nested special case counted right when that special case is named: one-effect plants "
-    << pct(t.one_right_special, t.one) << "; two-effect plants both named " << pct(t.two_both_special, t.two) << "\n";
   o << "- clean plants with an invented effect: " << pct(t.clean_invented, t.clean) << " (answered \"no physics is missing\": "
     << pct(t.clean_nothing, t.clean) << ")\n";
   o << "- true effects named at the true place: " << pct(t.right_place, t.named_true) << "\n";

@@ -3,10 +3,7 @@
 // (synthetic_plants.hpp) and the randomised one (random_plants.hpp), scored as in issue 14:
 // first-named right on one-effect plants, both named on two-effect plants, invented effects on
 // clean plants, the confusion matrix, per-effect precision and recall, and whether the true
-// parameter values lie in the reported bounded-error intervals. Beside the strict figures, a second,
-// declared one: a richer friction law within 2 noise levels of its nested special case
-// (TrueEffect::detectability_vs_special_case) counts as named when that special case is named.
-// `sets-diagnose --suite ...`.
+// parameter values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
 
 #include <functional>
 #include <string>
@@ -44,11 +41,6 @@ struct SuitePlantResult {
   std::string error;                 // the diagnosis failed with this message
   bool first_right() const;          // the first named effect is the (first) true one, or none for clean
   bool all_named() const;            // every true effect is named
-  // The second, declared figures (beside the strict ones, never instead): a true richer law within
-  // kDetectableInNoiseLevels of its nested special case also counts when that special case is
-  // named (`named_as_special_case`).
-  bool first_right_or_special_case() const;  // first_right, or the first true effect named as its special case
-  bool all_named_or_special_case() const;    // every true effect named, or named as its special case
 };
 
 struct SuiteOptions {
@@ -56,11 +48,6 @@ struct SuiteOptions {
   DiagnosisOptions diagnosis;  // threads and progress are set per plant
   std::function<void(const SuitePlantResult&, int done, int total)> on_plant;  // progress (optional)
 };
-
-/// The true effect `t` is a richer law within kDetectableInNoiseLevels of its nested special case
-/// (TrueEffect::detectability_vs_special_case, measured) and every effect of that special case is
-/// in `named` (a plant of the special case within the noise, named so).
-bool named_as_special_case(const TrueEffect& t, const std::vector<std::string>& named);
 
 /// Plants random_plant(first_seed), ..., random_plant(first_seed + count - 1).
 std::vector<SuitePlantResult> run_random_suite(unsigned first_seed, int count, const SuiteOptions& options = {});
