@@ -28,8 +28,8 @@ struct TrueEffect {
   std::vector<std::string> special_case;
   /// The truth with the law replaced by its special case (its parameters free, the plant's own
   /// free as for `detectability`), calibrated on the noise-free outputs: RMS miss / noise sigma,
-  /// largest over outputs. An estimate from one start (a better optimum could only lower it);
-  /// below 2 the richer law is a special-case plant within the noise. -1: not measured.
+  /// largest over outputs. The best of a few starts, so an upper estimate (a better optimum could
+  /// only lower it); below 2 the richer law is a special-case plant within the noise. -1: not measured.
   double detectability_vs_special_case = -1;
 };
 
