@@ -213,6 +213,16 @@ SuiteTally tally(const std::vector<SuitePlantResult>& results) {
   return t;
 }
 
+// "coulomb_friction + constant_offset 1.37 sigma": truncated to two decimals, so that the printed
+// value falls below the generator's threshold exactly when the measured one does.
+std::string special_case_text(const TrueEffect& t) {
+  std::ostringstream x;
+  for (std::size_t k = 0; k < t.special_case.size(); ++k) x << (k ? " + " : "") << t.special_case[k];
+  if (t.detectability_vs_special_case < 0) x << " unknown";
+  else x << " " << std::fixed << std::setprecision(2) << std::floor(100 * t.detectability_vs_special_case) / 100 << " sigma";
+  return x.str();
+}
+
 // One row per plant.
 void write_plant_table(std::ostream& o, const std::vector<SuitePlantResult>& results) {
   o << "| plant | family | true effects (where, strength) | named (where) | answer | first right | all named | fit val: nominal -> augmented | "
@@ -224,6 +234,7 @@ void write_plant_table(std::ostream& o, const std::vector<SuitePlantResult>& res
       std::ostringstream x;
       x << t.name << " (" << t.where << ", " << std::round(100 * t.strength) << " %";
       if (t.detectability > 0) x << ", " << std::setprecision(2) << t.detectability << " sigma" << std::setprecision(1);
+      if (!t.special_case.empty()) x << ", vs " << special_case_text(t);
       x << ")";
       truth += (truth.empty() ? "" : ", ") + x.str();
     }

@@ -56,6 +56,15 @@ std::string new_fixed_param(Names& names, std::vector<ModelParameter>& ps, const
   return p.name;
 }
 
+// A parameter the calibration of a nested special case adjusts, from `v`.
+std::string new_free_param(Names& names, std::vector<ModelParameter>& ps, const std::vector<std::string>& hints, double v,
+                           double lo = -1e300) {
+  const std::string n = new_fixed_param(names, ps, hints, v);
+  ps.back().fixed = false;
+  ps.back().min = lo;
+  return n;
+}
+
 Eq& equation_of(std::vector<Eq>& eqs, const std::string& state) {
   for (auto& e : eqs)
     if (e.state == state) return e;
@@ -96,6 +105,12 @@ Effect friction_effect(Rng& r, const Build& b, const std::string& name, const Sc
       equation_of(eqs, vel.eq).extra.push_back("sign(" + v + ")*(" + Fc + " + " + Fs + "*" + law + ")");
       if (exponent2) values = {{"Fc", k * F}, {"Fs", k * F * ratio}, {"vs", vs}};
     };
+    // Fs = 0: Coulomb friction, from a level between the law's ends (Fc at speed, Fc + Fs at rest).
+    E.special_case = {"coulomb_friction"};
+    E.apply_special_case = [=](double k, double level, auto& eqs, auto& ps) {
+      const std::string Fc = new_free_param(*names, ps, {"Fc", "fc"}, k * F * (1 + level * ratio), 0.0);
+      equation_of(eqs, vel.eq).extra.push_back(Fc + "*sign(" + v + ")");
+    };
   } else if (name == "quadratic_drag") {
     E.apply = [=](double k, auto& eqs, auto&, auto&, auto&, auto& ps, auto& values) {
       const std::string Cd = new_fixed_param(*names, ps, {"Cd", "cd", "drag"}, k * F / (vr * vr));
@@ -111,6 +126,15 @@ Effect friction_effect(Rng& r, const Build& b, const std::string& name, const Sc
       const std::string D = new_fixed_param(*names, ps, {"dFv", "dvisc"}, dfv);
       equation_of(eqs, vel.eq).extra.push_back("(" + P + "*(" + v + " > 0) - " + M + "*(" + v + " < 0) + " + D + "*" + v + "*(" + v + " > 0))");
       values = {{"Fc_pos", fp}, {"Fc_neg", fn}, {"dFv", dfv}};
+    };
+    // dFv = 0: Coulomb friction and a constant offset, from the law's levels with the forward side
+    // at a level between its ends (fp at rest, fp + dFv v at the velocity's RMS).
+    E.special_case = {"coulomb_friction", "constant_offset"};
+    E.apply_special_case = [=](double k, double level, auto& eqs, auto& ps) {
+      const double fp = k * F * a + level * k * F * dv, fn = k * F * bneg;
+      const std::string Fc = new_free_param(*names, ps, {"Fc", "fc"}, std::max(0.0, 0.5 * (fp + fn)), 0.0);
+      const std::string off = new_free_param(*names, ps, {"off", "bias"}, 0.5 * (fp - fn));
+      equation_of(eqs, vel.eq).extra.push_back("(" + Fc + "*sign(" + v + ") + " + off + ")");
     };
   } else {  // viscous_friction: the nominal leaves the damping out
     E.has_knob = false;

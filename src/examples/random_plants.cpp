@@ -242,7 +242,9 @@ class Truth {
   Truth(const Build& b, const std::vector<Effect>& effects, std::string time_col)
       : b_(b), effects_(effects), time_col_(std::move(time_col)) {}
 
-  ModelFile with(const std::vector<double>& knobs, int skip, std::vector<EffectValues>* values) const {
+  // level >= 0: effect `skip` replaced by its nested special case instead, its free parameters
+  // starting at `level` between the law's ends.
+  ModelFile with(const std::vector<double>& knobs, int skip, std::vector<EffectValues>* values, double level = -1) const {
     std::vector<Eq> eqs = b_.eqs;
     NamedTexts sampled = b_.sampled, outputs = b_.outputs;
     std::vector<ModelState> states = b_.states;
@@ -250,6 +252,7 @@ class Truth {
     for (std::size_t i = 0; i < effects_.size(); ++i) {
       EffectValues v;
       if (static_cast<int>(i) != skip) effects_[i].apply(knobs[i], eqs, sampled, outputs, states, ps, v);
+      else if (level >= 0) effects_[i].apply_special_case(knobs[i], level, eqs, ps);
       if (values) values->push_back(v);
     }
     // The truth has the damping the nominal leaves out; without the viscous effect it goes too.
@@ -307,6 +310,36 @@ bool set_strengths(Rng& r, const Truth& truth, const Recording& est, const Noise
   return true;
 }
 
+// The estimation record with the truth's noise-free outputs y in place of the measured ones.
+bool noise_free_record(const Build& b, const ModelFile& truth, const Recording& est, Recording& clean_rec, Eigen::MatrixXd& y) {
+  if (!simulate_outputs(truth, est, y)) return false;
+  clean_rec = est;
+  for (std::size_t j = 0; j < b.outputs.size(); ++j) {
+    const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
+    clean_rec.add(b.outputs[j].second, std::vector<double>(yj.data(), yj.data() + yj.size()));
+  }
+  return true;
+}
+
+// `model` (its free parameters from their values) calibrated on the noise-free outputs y: RMS miss
+// / noise level, largest over the outputs; -1 when the calibration fails.
+double calibrated_miss(const ModelFile& model, const Recording& clean_rec, const Eigen::MatrixXd& y, const Noise& noise) {
+  try {
+    Simulator s(model, clean_rec, {2});
+    const CalibrationResult cr = calibrate(s, s.parameter_values(), s.free_parameters());
+    if (!cr.ok) return -1;
+    double worst = 0;
+    for (Eigen::Index j = 0; j < y.cols(); ++j) {
+      const double sd = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean());
+      const double miss = std::sqrt((y.col(j) - cr.outputs.col(j)).array().square().mean());
+      worst = std::max(worst, miss / std::max(noise.fraction[static_cast<std::size_t>(j)] * sd, 1e-300));
+    }
+    return worst;
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
 // Strong enough to matter: without it, the plant's own structure calibrated on the noise-free
 // outputs (from the true values) still misses by at least 2 noise levels RMS on some output.
 bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, const Recording& est, const Noise& noise,
@@ -314,26 +347,35 @@ bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, c
   const std::size_t count = truth_of.effects().size();
   detectability.assign(count, 0.0);
   Eigen::MatrixXd y;
-  if (!simulate_outputs(truth, est, y)) return false;
-  Recording clean_rec = est;
-  for (std::size_t j = 0; j < b.outputs.size(); ++j) {
-    const Eigen::VectorXd yj = y.col(static_cast<Eigen::Index>(j));
-    clean_rec.add(b.outputs[j].second, std::vector<double>(yj.data(), yj.data() + yj.size()));
-  }
+  Recording clean_rec;
+  if (!noise_free_record(b, truth, est, clean_rec, y)) return false;
   for (std::size_t i = 0; i < count; ++i) {
-    try {
-      Simulator s(truth_of.with(knobs, static_cast<int>(i), nullptr), clean_rec, {2});
-      const CalibrationResult cr = calibrate(s, s.parameter_values(), s.free_parameters());
-      for (Eigen::Index j = 0; cr.ok && j < y.cols(); ++j) {
-        const double sd = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean());
-        const double miss = std::sqrt((y.col(j) - cr.outputs.col(j)).array().square().mean());
-        detectability[i] = std::max(detectability[i], miss / std::max(noise.fraction[static_cast<std::size_t>(j)] * sd, 1e-300));
-      }
-    } catch (const std::exception&) {
-    }
-    if (detectability[i] < 2.0) return false;
+    detectability[i] = std::max(0.0, calibrated_miss(truth_of.with(knobs, static_cast<int>(i), nullptr), clean_rec, y, noise));
+    if (detectability[i] < kDetectableInNoiseLevels) return false;
   }
   return true;
+}
+
+// Each richer law against its nested special case, the same measure as `detectable` (a record of
+// the plant drawn, never a condition of the draw): -1 for an effect without one or where every
+// calibration fails. Calibrations end in local optima: the best of three starts (the special case
+// at either end of the law and midway) and of the plant without the law (`detectability`: Fc = 0,
+// no offset, a point of the special case).
+std::vector<double> detectability_vs_special_cases(const Build& b, const Truth& truth_of, const ModelFile& truth,
+                                                   const Recording& est, const Noise& noise, const std::vector<double>& knobs,
+                                                   const std::vector<double>& detectability) {
+  std::vector<double> out(truth_of.effects().size(), -1.0);
+  Eigen::MatrixXd y;
+  Recording clean_rec;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (truth_of.effects()[i].special_case.empty()) continue;
+    if (y.size() == 0 && !noise_free_record(b, truth, est, clean_rec, y)) return out;
+    for (double level : {0.0, 0.5, 1.0}) {
+      const double miss = calibrated_miss(truth_of.with(knobs, static_cast<int>(i), nullptr, level), clean_rec, y, noise);
+      if (miss >= 0) out[i] = std::min({miss, out[i] < 0 ? miss : out[i], detectability[i]});
+    }
+  }
+  return out;
 }
 
 // The measured outputs: the truth simulated on each record plus the drawn noise; sigma and
@@ -429,6 +471,8 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     p.family = b.family;
     p.name = "random-" + std::to_string(seed);
     p.nominal = nominal_of(r, b, rec.time_col);
+    // After every draw of this plant: measuring takes names from r but changes nothing drawn.
+    const std::vector<double> vs_special = detectability_vs_special_cases(b, truth_of, truth, rec.est, noise, knobs, detectability);
     p.nominal.name = "nominal " + b.family + " model (random plant " + std::to_string(seed) + ")";
     p.truth = truth;
     p.truth.name = "truth of random plant " + std::to_string(seed);
@@ -437,7 +481,8 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     p.estimation.source = p.name + " (estimation)";
     p.validation.source = p.name + " (validation)";
     for (std::size_t i = 0; i < effects.size(); ++i)
-      p.effects.push_back({effects[i].name, effects[i].where, values[i], strengths[i], detectability[i]});
+      p.effects.push_back({effects[i].name, effects[i].where, values[i], strengths[i], detectability[i], effects[i].special_case,
+                           vs_special[i]});
     p.true_effect = p.effects.empty() ? "none" : p.effects.front().name;
     if (!p.effects.empty()) p.true_values = p.effects.front().values;
     p.description = description(b, rec, noise);

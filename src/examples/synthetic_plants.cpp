@@ -172,7 +172,7 @@ SyntheticPlant synthetic_plant(const std::string& name) {
     const bool actuator = name == "backlash" || name == "dead_zone" || name == "input_saturation" || name == "time_delay";
     const bool sensor = name == "output_saturation" || name == "hysteresis" || name == "absolute_value_sensor";
     const std::string where = is_tank ? "h" : actuator ? "u" : sensor ? "x" : "v";
-    p.effects.push_back({name, where, p.true_values, 0.0});
+    p.effects.push_back({name, where, p.true_values, 0.0, 0.0, {}, -1.0});
   }
   return p;
 }

@@ -75,3 +75,44 @@ TEST(SuiteReport, ListsEveryTrueValueOutsideAnIntervalAndOnlyThose) {
   r.coverage.front().inside_estimate = true;
   EXPECT_EQ(suite_report({r}, false).find("True values outside"), std::string::npos);
 }
+
+// The truth column prints each richer law's measure against its nested special case (the
+// generator's TrueEffect::detectability_vs_special_case), truncated so that the printed value is
+// below the generator's threshold exactly when the measured one is; "unknown" when not measured
+// (scored results made by hand: no diagnosis run).
+namespace {
+
+TrueEffect nested_law(const std::string& name, std::vector<std::string> special_case, double vs_special_case) {
+  TrueEffect t;
+  t.name = name, t.where = "v", t.strength = 0.2, t.detectability = 6;
+  t.special_case = std::move(special_case);
+  t.detectability_vs_special_case = vs_special_case;
+  return t;
+}
+
+SuitePlantResult scored(const std::string& plant, std::vector<TrueEffect> truth, std::vector<std::string> named) {
+  SuitePlantResult r;
+  r.name = plant;
+  r.answer = "missing";
+  r.truth = std::move(truth);
+  r.named = std::move(named);
+  r.places.assign(r.named.size(), "v");
+  return r;
+}
+
+}  // namespace
+
+TEST(SuiteReport, PrintsEachRicherLawsMeasureAgainstItsSpecialCase) {
+  const std::string report = suite_report(
+      {scored("random-1", {nested_law("stribeck_friction", {"coulomb_friction"}, 1.999)}, {"coulomb_friction"}),
+       scored("random-2", {nested_law("asymmetric_friction", {"coulomb_friction", "constant_offset"}, 3.2)},
+              {"coulomb_friction", "constant_offset"}),
+       scored("random-3", {nested_law("stribeck_friction", {"coulomb_friction"}, -1)}, {"stribeck_friction"}),
+       scored("random-4", {nested_law("dead_zone", {}, -1)}, {"dead_zone"})});
+  EXPECT_NE(report.find("stribeck_friction (v, 20 %, 6 sigma, vs coulomb_friction 1.99 sigma)"), std::string::npos) << report;
+  EXPECT_NE(report.find("asymmetric_friction (v, 20 %, 6 sigma, vs coulomb_friction + constant_offset 3.20 sigma)"), std::string::npos);
+  EXPECT_NE(report.find("stribeck_friction (v, 20 %, 6 sigma, vs coulomb_friction unknown)"), std::string::npos);
+  EXPECT_NE(report.find("dead_zone (v, 20 %, 6 sigma)"), std::string::npos);
+  // The strict figure does not move.
+  EXPECT_NE(report.find("first named right: 2 of 4"), std::string::npos);
+}

@@ -70,3 +70,38 @@ TEST(RandomPlants, ForcedEffectIsInTheTruthAndNotInTheNominal) {
   EXPECT_EQ(p.effects.front().values.front().first, "alpha");
   EXPECT_THROW(random_plant(3, RandomPlantOptions{1, "thermal", "bouc_wen_hysteresis", 0}), InputError);
 }
+
+// A richer friction law is measured against its nested special case (Stribeck: Coulomb friction;
+// asymmetric friction: Coulomb friction + an offset), calibrated on the noise-free outputs. The
+// special case nests "without the law" (Fc = 0, no offset), so it never misses by more. Forced
+// development seeds (docs/reproduction/diagnosis.md, seed table), one effect each; on 700 079 (asymmetric
+// friction) the calibration from the law's start ends above `detectability` (7.99 against 7.60).
+TEST(RandomPlants, RicherFrictionLawIsMeasuredAgainstItsNestedSpecialCase) {
+  RandomPlantOptions o;
+  o.effects = 1;
+  o.effect = "stribeck_friction";
+  // 700 065: a Stribeck part within the noise of Coulomb friction, though far from "no friction".
+  const TrueEffect small = random_plant(700065, o).effects.at(0);
+  EXPECT_EQ(small.special_case, std::vector<std::string>{"coulomb_friction"});
+  EXPECT_GE(small.detectability, 4.0);
+  EXPECT_GE(small.detectability_vs_special_case, 0.0);
+  EXPECT_LT(small.detectability_vs_special_case, kDetectableInNoiseLevels);
+  // 700 061: a Stribeck part no Coulomb friction can stand for.
+  const TrueEffect big = random_plant(700061, o).effects.at(0);
+  EXPECT_GT(big.detectability_vs_special_case, 5 * kDetectableInNoiseLevels);
+  const std::vector<std::pair<std::string, unsigned>> forced = {
+      {"stribeck_friction", 700062}, {"stribeck_friction", 700067}, {"asymmetric_friction", 700052},
+      {"asymmetric_friction", 700053}, {"asymmetric_friction", 700079}};
+  for (const auto& [effect, seed] : forced) {
+    o.effect = effect;
+    const TrueEffect e = random_plant(seed, o).effects.at(0);
+    EXPECT_GE(e.detectability_vs_special_case, 0.0) << effect << " " << seed;
+    EXPECT_LE(e.detectability_vs_special_case, e.detectability) << effect << " " << seed;
+  }
+  o.effect = "asymmetric_friction";
+  EXPECT_EQ(random_plant(700053, o).effects.at(0).special_case, (std::vector<std::string>{"coulomb_friction", "constant_offset"}));
+  o.effect = "coulomb_friction";
+  const TrueEffect plain = random_plant(700041, o).effects.at(0);
+  EXPECT_TRUE(plain.special_case.empty());
+  EXPECT_EQ(plain.detectability_vs_special_case, -1.0);
+}

@@ -23,6 +23,14 @@ struct TrueEffect {
   double strength = 0;  // RMS output deviation it causes / RMS of the output (noise-free)
   double detectability = 0;  // the nominal structure without it, calibrated on the noise-free
                              // outputs: RMS miss / noise sigma (largest over outputs; 0: not measured)
+  /// A richer law's nested special case (stribeck_friction: {coulomb_friction};
+  /// asymmetric_friction: {coulomb_friction, constant_offset}); empty for other effects.
+  std::vector<std::string> special_case;
+  /// The truth with the law replaced by its special case (its parameters free, the plant's own
+  /// free as for `detectability`), calibrated on the noise-free outputs: RMS miss / noise sigma,
+  /// largest over outputs. The best of a few starts, so an upper estimate (a better optimum could
+  /// only lower it); below 2 the richer law is a special-case plant within the noise. -1: not measured.
+  double detectability_vs_special_case = -1;
 };
 
 struct SyntheticPlant {
