@@ -255,14 +255,16 @@ TEST(Hypotheses, HypothesisThatEndsWorseThanTheModelItNestsIsRefinedFromThatMode
   const Simulator fast(s.model, s.estimation, {coarse.screening_substeps});
   const Context calibration{s.model, s.estimation, &s.validation, coarse, *s.exact, fast, s.exact_validation.get(), s.c().say};
   const NominalFit nominal = calibrate_nominal(calibration, s.d);
-  s.options.screening_substeps = evaluate(fast, nominal.calibration.parameters).ok
-                                     ? coarse.screening_substeps
-                                     : screening_substeps(s.model, s.estimation, *s.exact, nominal.calibration.parameters, 10,
-                                                          coarse.screening_substeps + 1);
-  ASSERT_EQ(s.options.screening_substeps, 10);  // s.c()'s simulators are at 10
-  const NoiseFloor noise = noise_floor(s.c(), nominal, s.d);
+  DiagnosisOptions fine = s.options;
+  fine.screening_substeps = evaluate(fast, nominal.calibration.parameters).ok
+                                ? coarse.screening_substeps
+                                : screening_substeps(s.model, s.estimation, *s.exact, nominal.calibration.parameters, 10,
+                                                     coarse.screening_substeps + 1);
+  const Simulator fine_fast(s.model, s.estimation, {fine.screening_substeps});
+  const Context search{s.model, s.estimation, &s.validation, fine, *s.exact, fine_fast, s.exact_validation.get(), s.c().say};
+  const NoiseFloor noise = noise_floor(search, nominal, s.d);
   s.d.nominal_tests = test_residual(*s.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
-  search_hypotheses(s.c(), nominal, noise, s.d);
+  search_hypotheses(search, nominal, noise, s.d);
   std::string names;
   for (const auto& e : s.d.effects) names += e.name + " ";
   for (const auto& truth : plant.effects)
