@@ -43,6 +43,22 @@ std::vector<DiagnosedEffect> named_alone(const SyntheticPlant& plant) {
   return s.d.effects;
 }
 
+// Random plant `seed`, whose one effect must be `effect`: what the search names alone, checked to
+// be that effect in its true equation; returned for the test's own further checks.
+std::vector<DiagnosedEffect> expect_named_alone_in_place(unsigned seed, const std::string& effect) {
+  const SyntheticPlant plant = random_plant(seed);
+  if (plant.effects.size() != 1u || plant.effects[0].name != effect) {
+    ADD_FAILURE() << "random plant " << seed << " no longer draws " << effect << " alone";
+    return {};
+  }
+  const std::vector<DiagnosedEffect> named = named_alone(plant);
+  EXPECT_EQ(named.size(), 1u);
+  if (named.size() != 1u) return named;
+  EXPECT_EQ(named[0].name, effect);
+  EXPECT_EQ(named[0].equation, plant.effects[0].where);
+  return named;
+}
+
 }  // namespace
 
 TEST(Hypotheses, CoulombLawIsChosenForTheCoulombPlant) {
@@ -144,13 +160,7 @@ TEST(Hypotheses, CoulombPlantIsNotNamedStribeck) {
 // was named coulomb_friction on main 12004db. (Seed 5 001 597: held out in the tenth session,
 // development since, docs/reproduction/diagnosis.md.)
 TEST(Hypotheses, StribeckLawIsReachedFromCoulombsOptimumSwitchedOn) {
-  const SyntheticPlant plant = random_plant(5001597);
-  ASSERT_EQ(plant.effects.size(), 1u);
-  ASSERT_EQ(plant.effects[0].name, "stribeck_friction");
-  const std::vector<DiagnosedEffect> named = named_alone(plant);
-  ASSERT_EQ(named.size(), 1u);
-  EXPECT_EQ(named[0].name, "stribeck_friction");
-  EXPECT_EQ(named[0].equation, plant.effects[0].where);
+  expect_named_alone_in_place(5001597, "stribeck_friction");
 }
 
 // The guard of the switched-on start: a Coulomb plant beside another effect stays Coulomb, where
@@ -208,13 +218,7 @@ TEST(Hypotheses, DelayBetweenTheGridsValuesIsNamedAloneAtItsNumberOfSamples) {
 // and was never refined; the plant was named constant_offset on main 44215f1. (Seed 5 001 335:
 // held out in the eighth session, development since, docs/reproduction/diagnosis.md.)
 TEST(Hypotheses, LawThatReplacesATermIsRefinedWhateverItsScreeningRank) {
-  const SyntheticPlant plant = random_plant(5001335);
-  ASSERT_EQ(plant.effects.size(), 1u);
-  ASSERT_EQ(plant.effects[0].name, "sqrt_outflow");
-  const std::vector<DiagnosedEffect> named = named_alone(plant);
-  ASSERT_EQ(named.size(), 1u);
-  EXPECT_EQ(named[0].name, "sqrt_outflow");
-  EXPECT_EQ(named[0].equation, plant.effects[0].where);
+  expect_named_alone_in_place(5001335, "sqrt_outflow");
 }
 
 // A richer law is named when the data exclude its special case itself: the special case,
@@ -225,13 +229,8 @@ TEST(Hypotheses, LawThatReplacesATermIsRefinedWhateverItsScreeningRank) {
 // (Kb in [-4.8, 5.1]): on main 12004db nothing was named ("unexplained"). (Seed 5 001 955: held
 // out in the tenth session, development since, docs/reproduction/diagnosis.md.)
 TEST(Hypotheses, RicherLawIsNamedWhenTheDataExcludeItsSpecialCaseItself) {
-  const SyntheticPlant plant = random_plant(5001955);
-  ASSERT_EQ(plant.effects.size(), 1u);
-  ASSERT_EQ(plant.effects[0].name, "asymmetric_friction");
-  const std::vector<DiagnosedEffect> named = named_alone(plant);
+  const std::vector<DiagnosedEffect> named = expect_named_alone_in_place(5001955, "asymmetric_friction");
   ASSERT_EQ(named.size(), 1u);
-  EXPECT_EQ(named[0].name, "asymmetric_friction");
-  EXPECT_EQ(named[0].equation, plant.effects[0].where);
   EXPECT_NE(named[0].evidence.find("constant_offset+coulomb_friction, its special case"), std::string::npos)
       << named[0].evidence;
 }
