@@ -495,7 +495,7 @@ std::optional<Eigen::VectorXd> switched_on_start(const Context& c, const Candida
   std::vector<std::string> on_grid;
   std::optional<ModelFile> m = at_special_case(richer, special, fixed, on_grid);
   if (!m) return {};
-  return switch_half_on(c, richer.model, richer, special.cand, std::move(*m), fixed, on_grid);
+  return switch_half_on(c, richer.model, richer, special.cand, std::move(*m), fixed, on_grid, true);
 }
 
 // A pair whose member `j` is richer than the same member of the calibrated pair `special` (the
