@@ -809,8 +809,12 @@ std::optional<Candidate> richer_pair(const Context& c, const std::vector<Candida
 // at the pair's optimum (pair_switched_on_start): one start, the richer pair's own basin, as for
 // one effect. The richer pair is then judged by the nested rule against the pair it contains
 // (judge_round): named only where its extra parameters remove >= 10 % of that pair's misfit, more
-// than the noise could, and the data exclude the special case.
-void refine_richer_pairs(const Context& c, const HypothesisSearch& h, Round& r, Diagnosis& d) {
+// than the noise could, and the data exclude the special case. Only pairs both of whose members
+// matter at the pair's optimum (own-term share >= the rule's): where the other member does nothing
+// the pair is its special case alone, whose richer law is refined alone already, and the richer
+// pair's extra freedom let the idle member fit with it what the law alone should (the fixed suite's
+// Stribeck plant: Coulomb + cubic stiffness, the cubic at 2 %, became Stribeck + cubic stiffness).
+void refine_richer_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d) {
   std::vector<Candidate> on_current;
   try {
     on_current = generate_candidates(h.current, r.current_simulation, c.estimation);
@@ -823,6 +827,9 @@ void refine_richer_pairs(const Context& c, const HypothesisSearch& h, Round& r, 
   for (std::size_t i = 1; i < r.trials.size(); ++i) {
     const Trial& t = r.trials[i];
     if (!t.ok || t.cand.parts.size() != 2 || !(t.cost < r.cost_cur)) continue;
+    bool both_matter = true;  // NaN (cannot be switched off) counts as mattering
+    for (double off : t.part_neutral) both_matter = both_matter && !((off - t.cost) / off < min_own_term);
+    if (!both_matter) continue;
     for (std::size_t j = 0; j < 2; ++j)
       for (const auto& e : physics_catalogue())
         for (const auto& sc : e.special_cases) {
@@ -1199,7 +1206,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     screen_round(c, h, chosen, bound, r, d);
     refine_round(c, h, r, d);
     refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
-    refine_richer_pairs(c, h, r, d);
+    refine_richer_pairs(c, h, rules.min_own_term, r, d);
     refine_delay_numbers(c, h, bound, r);
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
