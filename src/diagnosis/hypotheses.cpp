@@ -1135,10 +1135,39 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
   }
 }
 
+// The hypotheses of the round the data cannot tell from the pick (`a`): each passes every rule on
+// its own (r.ok: the nested rule included, so a richer law below its special case is not one), and
+// the nested rule's comparison (against) finds neither beyond the other. One-sided would list a
+// hypothesis the data prefer and sparsity passed over: the data do tell those apart. A hypothesis
+// holding every effect of the pick is the pick with more beside it, not another explanation.
+// 5 002 875: -(T2 - Ta)/R2_x with Ta fixed ties slope and intercept in T2; viscous friction and a
+// constant offset both free them, the same family, so either fits as well as the other.
+std::vector<EquallyGood> equally_good(const Round& r, const NoiseFloor& noise, const AcceptanceRules& rules, std::size_t a) {
+  std::vector<EquallyGood> out;
+  const std::vector<Candidate> mine = parts_of(r.trials[a].cand);
+  for (std::size_t b : r.ok) {
+    if (b == a) continue;
+    const std::vector<Candidate> theirs = parts_of(r.trials[b].cand);
+    const bool holds_pick = std::all_of(mine.begin(), mine.end(), [&](const Candidate& p) {
+      return std::any_of(theirs.begin(), theirs.end(), [&](const Candidate& q) { return q.effect == p.effect && q.equation == p.equation; });
+    });
+    if (holds_pick || passes(check_rules(against(r, noise, r.trials[a], r.trials[b]), rules)) ||
+        passes(check_rules(against(r, noise, r.trials[b], r.trials[a]), rules)))
+      continue;
+    EquallyGood e;
+    for (const auto& q : theirs) e.effects.push_back(q.effect), e.equations.push_back(q.equation);
+    e.misfit = r.trials[b].cost / std::max(r.cost_cur, 1e-300);
+    e.misfit_validation = r.trials[b].cost_val / std::max(r.cost_cur_val, 1e-300);
+    out.push_back(std::move(e));
+  }
+  std::sort(out.begin(), out.end(), [](const EquallyGood& x, const EquallyGood& y) { return x.misfit < y.misfit; });
+  return out;
+}
+
 // The picked hypothesis's effects added to the diagnosis (two at once: each with its own share of
 // the misfit, the larger first) and to the search.
-void record_pick(const Context& c, const Round& r, std::size_t pick, std::size_t best, HypothesisSearch& h,
-                 std::vector<std::string>& chosen, Diagnosis& d) {
+void record_pick(const Context& c, const Round& r, std::size_t pick, std::size_t best, std::vector<EquallyGood> alike,
+                 HypothesisSearch& h, std::vector<std::string>& chosen, Diagnosis& d) {
   const Trial& t = r.trials[pick];
   const std::vector<Candidate> parts = parts_of(t.cand);
   std::vector<std::size_t> order(parts.size());
@@ -1178,6 +1207,10 @@ void record_pick(const Context& c, const Round& r, std::size_t pick, std::size_t
     ev << ")";
     if (r.index == 0 && !d.regions.empty()) ev << "; nominal residual concentrated " << d.regions.front().description;
     e.evidence = ev.str();
+    if (k == order.front()) {
+      e.equally_good = std::move(alike);
+      for (const auto& a : e.equally_good) c.say("  equally good on these data: " + equally_good_text(a));
+    }
     c.say("  found " + e.name + " in " + e.equation);
     for (std::size_t q = 0; q < part.parameters.size(); ++q) h.known_scales.emplace_back(part.parameters[q], part.scales[q]);
     d.effects.push_back(e);
@@ -1221,7 +1254,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     say_round(c, r);
     if (r.ok.empty()) break;
     const auto [pick, best] = pick_sparsest(c, r);
-    record_pick(c, r, pick, best, h, chosen, d);
+    record_pick(c, r, pick, best, equally_good(r, noise, rules, pick), h, chosen, d);
     // Within the noise now? Then nothing more is missing.
     if (stop_at_noise && round + 1 < opt.max_effects && within_noise(c, h.current, noise)) break;
   }

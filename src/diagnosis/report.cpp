@@ -74,8 +74,12 @@ J effect_json(const Diagnosis& d, const DiagnosedEffect& e) {
   for (const auto& r : e.rules)
     rules.push_back({{"name", r.name}, {"value", num(r.value)}, {"threshold", r.threshold}, {"applies", r.applies}, {"passed", r.passed},
                      {"rule", r.description}});
+  J alike = J::array();
+  for (const auto& a : e.equally_good)
+    alike.push_back({{"effects", a.effects}, {"equations", a.equations}, {"misfit_share", num(a.misfit)},
+                     {"misfit_share_validation", num(a.misfit_validation)}, {"text", diagnosis_stage::equally_good_text(a)}});
   return {{"name", e.name}, {"equation", e.equation}, {"term", e.term}, {"parameters", ps}, {"evidence", e.evidence},
-          {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}};
+          {"placement", e.placement}, {"delay_samples", e.delay_samples}, {"rules", rules}, {"equally_good", alike}};
 }
 
 J noise_levels_json(const std::vector<OutputNoise>& levels) {
@@ -222,6 +226,9 @@ std::string diagnosis_text(const Diagnosis& d) {
       if (r.applies) o << " " << r.name << " " << fmt(r.value, 3) << (r.passed ? " >= " : " < ") << fmt(r.threshold, 3) << ";";
     o << "\n";
     o << "     evidence: " << e.evidence << "\n";
+    for (std::size_t k = 0; k < e.equally_good.size(); ++k)
+      o << (k ? "; " : "     equally good on these data: ") << diagnosis_stage::equally_good_text(e.equally_good[k])
+        << (k + 1 == e.equally_good.size() ? " - the data cannot tell them apart\n" : "");
   }
   if (!d.effects.empty()) {
     fitline("augmented, estimation", d.fit_augmented_estimation);

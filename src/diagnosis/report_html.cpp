@@ -127,8 +127,14 @@ void effects_section(std::ostringstream& o, const J& j, const ModelFile& model) 
     }
   }
   o << "</table>\n<ul class=\"note\">";
-  for (const auto& e : j["effects"])
-    o << "<li><b>" << escape(e["name"].get<std::string>()) << "</b>: " << escape(e["evidence"].get<std::string>()) << "</li>";
+  for (const auto& e : j["effects"]) {
+    o << "<li><b>" << escape(e["name"].get<std::string>()) << "</b>: " << escape(e["evidence"].get<std::string>());
+    if (e.contains("equally_good") && !e["equally_good"].empty()) {
+      o << "<br>Equally good on these data (the data cannot tell them apart):";
+      for (const auto& a : e["equally_good"]) o << " " << escape(a["text"].get<std::string>()) << ";";
+    }
+    o << "</li>";
+  }
   o << "</ul>\n<p class=\"note\">The bounded-error interval is the equation-error parameter uncertainty interval "
        "(certified LP bounds) met with the parameter's declared range; it holds when the error bounds below hold. The "
        "output-error interval (linearised at the estimate) and the statistical one are estimates and do not cut it. "

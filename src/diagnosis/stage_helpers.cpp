@@ -163,4 +163,12 @@ std::string fixed1(double x) {
   return os.str();
 }
 
+std::string equally_good_text(const EquallyGood& e) {
+  std::string t;
+  for (std::size_t k = 0; k < e.effects.size(); ++k) t += (k ? " + " : "") + e.effects[k] + " in " + e.equations[k];
+  t += " (removes " + fixed1(100 * (1 - e.misfit)) + " % of the squared misfit";
+  if (std::isfinite(e.misfit_validation)) t += ", " + fixed1(100 * (1 - e.misfit_validation)) + " % on validation";
+  return t + ")";
+}
+
 }  // namespace sets::diagnosis_stage

@@ -97,3 +97,12 @@ TEST(ReportHtml, SaysWhyTheFileValuesHaveNoFit) {
   EXPECT_TRUE(has(page, "blew up at t = 3 s (v &lt;x&gt;)")) << page;
   EXPECT_FALSE(has(page, ">nan<"));
 }
+
+TEST(ReportHtml, ListsTheEquallyGoodAlternativesOfAnEffect) {
+  Diagnosis d = small_diagnosis();
+  EXPECT_FALSE(has(diagnosis_html(d, {}), "Equally good on these data"));
+  d.effects[0].equally_good.push_back({{"constant_offset", "dead_zone"}, {"v", "u"}, 0.05, 0.04});
+  const std::string page = diagnosis_html(d, {});
+  EXPECT_TRUE(has(page, "Equally good on these data"));
+  EXPECT_TRUE(has(page, "constant_offset in v + dead_zone in u (removes 95.0 % of the squared misfit, 96.0 % on validation)"));
+}

@@ -120,3 +120,20 @@ TEST(Report, FileValuesThatBlowUpAreNotAvailableWithWhyNotANumber) {
   EXPECT_TRUE(j.at("nominal").at("fit_before_calibration").at("estimation").at("x_meas").is_null());
   EXPECT_EQ(j.at("nominal").at("fit_before_calibration_note").get<std::string>(), d.fit_start_note);
 }
+
+// An effect the data cannot tell from another: the other is printed beside it, in the text and
+// the JSON, with its share of the misfit; none printed when there is none.
+TEST(Report, EquallyGoodAlternativesArePrintedWhereThereAreSome) {
+  Diagnosis d = hand_made();
+  EXPECT_FALSE(contains(diagnosis_text(d), "equally good")) << diagnosis_text(d);
+  EXPECT_TRUE(nlohmann::json::parse(diagnosis_json(d, "")).at("effects").at(0).at("equally_good").empty());
+  d.effects[0].equally_good.push_back({{"constant_offset"}, {"v"}, 0.034, 0.029});
+  const std::string t = diagnosis_text(d);
+  EXPECT_TRUE(contains(t, "equally good on these data: constant_offset in v (removes 96.6 % of the squared misfit, 97.1 % on validation)"))
+      << t;
+  EXPECT_TRUE(contains(t, "the data cannot tell them apart")) << t;
+  const auto a = nlohmann::json::parse(diagnosis_json(d, "")).at("effects").at(0).at("equally_good").at(0);
+  EXPECT_EQ(a.at("effects").at(0).get<std::string>(), "constant_offset");
+  EXPECT_EQ(a.at("equations").at(0).get<std::string>(), "v");
+  EXPECT_DOUBLE_EQ(a.at("misfit_share").get<double>(), 0.034);
+}

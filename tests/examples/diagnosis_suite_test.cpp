@@ -116,3 +116,33 @@ TEST(SuiteReport, PrintsEachRicherLawsMeasureAgainstItsSpecialCase) {
   // The strict figure does not move.
   EXPECT_NE(report.find("first named right: 2 of 4"), std::string::npos);
 }
+
+// The declared second figure counts a plant whose truth is among the first named effect's equally
+// good alternatives; the strict one does not move, and the alternatives per named effect are
+// counted beside it (a pair listed counts once; an alternative of the second named effect does not
+// help the one-effect figure, it does the two-effect one).
+TEST(SuiteReport, LenientFigureCountsTheTruthAmongEquallyGoodAlternativesBesideTheStrictOne) {
+  auto with = [](SuitePlantResult r, std::vector<std::vector<EquallyGood>> alike) {
+    r.equally_good = std::move(alike);
+    r.equally_good.resize(r.named.size());
+    return r;
+  };
+  const EquallyGood offset{{"constant_offset"}, {"v"}, 0.03, 0.02}, pair{{"dead_zone", "constant_offset"}, {"u", "v"}, 0.03, 0.02};
+  const std::vector<SuitePlantResult> plants{
+      with(scored("random-1", {nested_law("constant_offset", {}, -1)}, {"viscous_friction"}), {{offset}}),
+      with(scored("random-2", {nested_law("constant_offset", {}, -1)}, {"viscous_friction", "dead_zone"}), {{}, {offset}}),
+      with(scored("random-3", {nested_law("dead_zone", {}, -1)}, {"dead_zone"}), {{pair}}),
+      with(scored("random-4", {nested_law("dead_zone", {}, -1), nested_law("constant_offset", {}, -1)}, {"viscous_friction", "dead_zone"}),
+           {{offset}, {}})};
+  EXPECT_TRUE(plants[0].first_right_or_equally_good());
+  EXPECT_FALSE(plants[1].first_right_or_equally_good());
+  EXPECT_TRUE(plants[3].all_named_or_equally_good());
+  EXPECT_FALSE(plants[3].all_named());
+  const std::string report = suite_report(plants);
+  EXPECT_NE(report.find("first named right: 1 of 3"), std::string::npos) << report;
+  EXPECT_NE(report.find("one-effect 2 of 3"), std::string::npos) << report;
+  EXPECT_NE(report.find("two-effect both 1 of 1"), std::string::npos) << report;
+  EXPECT_NE(report.find("alternatives listed: 4 for 6 named effects (0.67 per named effect), on 4 plants"), std::string::npos) << report;
+  EXPECT_NE(report.find("| random-1 | constant_offset (v) | 1. viscous_friction (v) | constant_offset (v) misfit 3.0 % | constant_offset |"),
+            std::string::npos) << report;
+}

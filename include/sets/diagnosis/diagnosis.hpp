@@ -108,8 +108,19 @@ struct EffectParameter {
   bool has_bounded_error_interval() const { return has_ee && ee_certified; }
 };
 
+/// Another hypothesis of the same round that the data cannot tell from the named one: it passes
+/// every rule on its own, and neither it nor the named hypothesis is beyond the other by the nested
+/// rule's comparison (docs/methods/diagnosis.md, "Equally good on these data"). Not a tie-break:
+/// which of them is named is unchanged.
+struct EquallyGood {
+  std::vector<std::string> effects, equations;  // one effect, or the two of a pair, with their places
+  double misfit = 0;             // its squared misfit, share of the current model's (estimation)
+  double misfit_validation = 0;  // the same on validation (NaN without a validation record)
+};
+
 struct DiagnosedEffect {
   std::string name, equation, term, evidence;
+  std::vector<EquallyGood> equally_good;  // the first effect of the named hypothesis carries them
   std::string placement;                 // structural place (physics_catalogue.hpp)
   std::vector<EffectParameter> parameters;
   int delay_samples = 0;                 // time_delay: the delay in samples

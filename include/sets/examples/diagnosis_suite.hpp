@@ -1,7 +1,9 @@
 #pragma once
 // The diagnosis run on suites of synthetic plants with known truth: the fixed suite
 // (synthetic_plants.hpp) and the randomised one (random_plants.hpp), scored as in issue 14:
-// first-named right on one-effect plants, both named on two-effect plants, invented effects on
+// first-named right on one-effect plants, both named on two-effect plants (each also leniently:
+// or the truth among the named effect's equally good alternatives, with the number of alternatives
+// per named effect beside it), invented effects on
 // clean plants, the confusion matrix, per-effect precision and recall, and whether the true
 // parameter values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
 
@@ -38,9 +40,14 @@ struct SuitePlantResult {
   std::vector<SuiteCoverage> coverage;  // true values that map cleanly, of effects named at the true place
   std::vector<double> noise_ratio;          // estimated / true noise sigma per output: the final model's estimate
   std::vector<double> noise_ratio_nominal;  // the same from the calibrated nominal's residual (the rules' floor)
+  std::vector<std::vector<EquallyGood>> equally_good;  // per named effect: the hypotheses the data cannot tell from it
   std::string error;                 // the diagnosis failed with this message
   bool first_right() const;          // the first named effect is the (first) true one, or none for clean
   bool all_named() const;            // every true effect is named
+  // Declared second figures, beside the strict ones: right, or the truth is among the named effects'
+  // equally good alternatives (the first named effect's for first_right).
+  bool first_right_or_equally_good() const;
+  bool all_named_or_equally_good() const;
 };
 
 struct SuiteOptions {
