@@ -23,32 +23,32 @@ def effects(cell):
     return [] if cell.strip() == "none" else EFFECT.findall(cell.strip())
 
 
-def rows(paths):
-    seen = set()
+def table(paths, width):
+    """The rows of the tables `width` cells wide whose first cell is a random plant."""
     for path in paths:
         with open(path) as f:
             for line in f:
                 cells = [c.strip() for c in line.strip().strip("|").split("|")]
-                if len(cells) != 11 or not cells[0].startswith("random-"):
-                    continue
-                if cells[0] in seen:
-                    sys.exit(f"{path}: plant {cells[0]} appears twice")
-                seen.add(cells[0])
-                yield path, cells
+                if len(cells) == width and cells[0].startswith("random-"):
+                    yield path, cells
+
+
+def rows(paths):
+    seen = set()
+    for path, cells in table(paths, 11):
+        if cells[0] in seen:
+            sys.exit(f"{path}: plant {cells[0]} appears twice")
+        seen.add(cells[0])
+        yield path, cells
 
 
 def equally_good(paths):
     """Per plant, per named rank: (alternatives listed, true effects among them)."""
     out = defaultdict(dict)
-    for path in paths:
-        with open(path) as f:
-            for line in f:
-                cells = [c.strip() for c in line.strip().strip("|").split("|")]
-                if len(cells) != 5 or not cells[0].startswith("random-"):
-                    continue
-                rank = int(cells[2].split(".", 1)[0])
-                among = set() if cells[4] == "none" else set(x.strip() for x in cells[4].split(","))
-                out[cells[0]][rank] = (len(cells[3].split("; ")), among)
+    for _, cells in table(paths, 5):
+        rank = int(cells[2].split(".", 1)[0])
+        among = set() if cells[4] == "none" else set(x.strip() for x in cells[4].split(","))
+        out[cells[0]][rank] = (len(cells[3].split("; ")), among)
     return out
 
 
