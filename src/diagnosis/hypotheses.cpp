@@ -1139,7 +1139,8 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
 // its own (r.ok: the nested rule included, so a richer law below its special case is not one), and
 // the nested rule's comparison (against) finds neither beyond the other. One-sided would list a
 // hypothesis the data prefer and sparsity passed over: the data do tell those apart. A hypothesis
-// holding every effect of the pick is the pick with more beside it, not another explanation.
+// holding every effect of the pick is the pick with more beside it, not another explanation; one
+// holding part of a pair is kept (the pair's other member is then not needed on these data).
 // 5 002 875: -(T2 - Ta)/R2_x with Ta fixed ties slope and intercept in T2; viscous friction and a
 // constant offset both free them, the same family, so either fits as well as the other.
 std::vector<EquallyGood> equally_good(const Round& r, const NoiseFloor& noise, const AcceptanceRules& rules, std::size_t a) {
@@ -1160,8 +1161,12 @@ std::vector<EquallyGood> equally_good(const Round& r, const NoiseFloor& noise, c
     e.misfit_validation = r.trials[b].cost_val / std::max(r.cost_cur_val, 1e-300);
     out.push_back(std::move(e));
   }
-  std::sort(out.begin(), out.end(), [](const EquallyGood& x, const EquallyGood& y) { return x.misfit < y.misfit; });
-  return out;
+  std::stable_sort(out.begin(), out.end(), [](const EquallyGood& x, const EquallyGood& y) { return x.misfit < y.misfit; });
+  std::vector<EquallyGood> once;  // the same effects at the same places refined twice (variants of one law): once
+  for (auto& e : out)
+    if (std::none_of(once.begin(), once.end(), [&](const EquallyGood& x) { return x.effects == e.effects && x.equations == e.equations; }))
+      once.push_back(std::move(e));
+  return once;
 }
 
 // The picked hypothesis's effects added to the diagnosis (two at once: each with its own share of
