@@ -282,8 +282,19 @@ bool nests(const Candidate& general, const Candidate& special, Fixed* fixed = nu
   return true;
 }
 
+// The pair of `first` and the candidate `second_of` picks among those generated on `first`'s model
+// (simulated at its values), as screening pairs them; empty when it picks none.
+std::optional<Candidate> pair_on(const Context& c, const Candidate& first,
+                                 const std::function<const Candidate*(const std::vector<Candidate>&)>& second_of) {
+  Simulator s(first.model, c.estimation, {c.options.screening_substeps});
+  const std::vector<Candidate> on_first = generate_candidates(first.model, s.simulate(s.parameter_values()), c.estimation);
+  const Candidate* second = second_of(on_first);
+  if (!second) return {};
+  return combine_candidates(first, *second);
+}
+
 // The special cases of a one-effect hypothesis that no calibrated hypothesis stands for, built on
-// `current` (a set of two: the second generated on the first's model, as screening pairs them).
+// `current` (a set of two: pair_on).
 std::vector<Candidate> missing_special_cases(const Context& c, const ModelFile& current, const SimulationResult& sim,
                                              const Candidate& general, const std::vector<const Candidate*>& calibrated) {
   std::vector<Candidate> out;
@@ -312,9 +323,8 @@ std::vector<Candidate> missing_special_cases(const Context& c, const ModelFile& 
         if (first) out.push_back(*first);
         continue;
       }
-      Simulator s(first->model, c.estimation, {c.options.screening_substeps});
-      const std::vector<Candidate> on_first = generate_candidates(first->model, s.simulate(s.parameter_values()), c.estimation);
-      if (const Candidate* second = find(on_first, set[1])) out.push_back(combine_candidates(*first, *second));
+      if (auto pair = pair_on(c, *first, [&](const std::vector<Candidate>& on_first) { return find(on_first, set[1]); }))
+        out.push_back(std::move(*pair));
     } catch (const std::exception&) {
       // not buildable here: the richer law is judged against the special cases that were
     }
@@ -764,6 +774,13 @@ const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& pa
   return nullptr;
 }
 
+// The share of pair `t`'s misfit that its member `k` removes: its cost with that member switched off
+// against its own; NaN where the member cannot be switched off.
+double member_share(const Trial& t, std::size_t k) {
+  const double off = t.part_neutral[k];
+  return std::isfinite(off) && off > 0 ? (off - t.cost) / off : kNaN;
+}
+
 // A pair one of whose members does nothing at the pair's optimum (switching it off costs less than
 // the own-term share) found the other member alone. When that fits better than the member's own
 // trial (or it had none), the pair reached a point the member's own starts missed (e.g. a delay
@@ -775,13 +792,9 @@ void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, do
   for (std::size_t i = 1; i < r.trials.size(); ++i) {
     const Trial& t = r.trials[i];
     if (!t.ok || t.part_neutral.size() != 2) continue;
-    auto share = [&](std::size_t k) {
-      const double off = t.part_neutral[k];
-      return std::isfinite(off) && off > 0 ? (off - t.cost) / off : kNaN;
-    };
     for (std::size_t k = 0; k < 2; ++k) {
       const Candidate& kept = t.cand.parts[1 - k];
-      if (!(share(k) < min_own_term) || share(1 - k) < min_own_term) continue;  // NaN: cannot be switched off
+      if (!(member_share(t, k) < min_own_term) || member_share(t, 1 - k) < min_own_term) continue;  // NaN: cannot be switched off
       const ScreenedHypothesis* alone = screened_alone(r.screening, kept);
       if (!alone) continue;
       // Refined alone already, to a point that fits at least as well: nothing was missed.
@@ -821,18 +834,16 @@ const Candidate* find_candidate(const std::vector<Candidate>& cands, const std::
 }
 
 // The pair of `special`'s members with member `j` replaced by the one-effect law `richer` at its
-// place, built on `current` as screening builds pairs (the second on the first's model).
+// place, built on `current` as screening builds pairs (pair_on).
 std::optional<Candidate> richer_pair(const Context& c, const std::vector<Candidate>& on_current, const Candidate& special,
                                      std::size_t j, const std::string& richer) {
   const Candidate &a = special.parts[0], &b = special.parts[1];
   const Candidate* first = j == 0 ? find_candidate(on_current, richer, a.equation, 0)
                                   : find_candidate(on_current, a.effect, a.equation, a.delay_samples);
   if (!first) return {};
-  Simulator s(first->model, c.estimation, {c.options.screening_substeps});
-  const std::vector<Candidate> on_first = generate_candidates(first->model, s.simulate(s.parameter_values()), c.estimation);
-  const Candidate* second = j == 1 ? find_candidate(on_first, richer, b.equation, 0) : find_candidate(on_first, b.effect, b.equation, b.delay_samples);
-  if (!second) return {};
-  return combine_candidates(*first, *second);
+  return pair_on(c, *first, [&](const std::vector<Candidate>& on_first) {
+    return j == 1 ? find_candidate(on_first, richer, b.equation, 0) : find_candidate(on_first, b.effect, b.equation, b.delay_samples);
+  });
 }
 
 // A pair (two effects at once) whose member is the special case of a richer law (Coulomb friction
@@ -863,9 +874,7 @@ void refine_richer_pairs(const Context& c, const HypothesisSearch& h, double min
   for (std::size_t i = 1; i < r.trials.size(); ++i) {
     const Trial& t = r.trials[i];
     if (!t.ok || t.cand.parts.size() != 2 || !(t.cost < r.cost_cur)) continue;
-    bool both_matter = true;  // NaN (cannot be switched off) counts as mattering
-    for (double off : t.part_neutral) both_matter = both_matter && !((off - t.cost) / off < min_own_term);
-    if (!both_matter) continue;
+    if (member_share(t, 0) < min_own_term || member_share(t, 1) < min_own_term) continue;  // NaN: cannot be switched off, matters
     for (std::size_t j = 0; j < 2; ++j)
       for (const auto& e : physics_catalogue())
         for (const auto& sc : e.special_cases) {
