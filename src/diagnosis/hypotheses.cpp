@@ -704,6 +704,23 @@ std::optional<Eigen::VectorXd> switched_off_start(const Candidate& cand, const M
   return values_of(m);
 }
 
+// The round's trials `which` refined again from the starts `again` (the progress line says `why`),
+// each keeping the better of its two results (its screening gain kept with it).
+void refine_again(const Context& c, const HypothesisSearch& h, const std::vector<std::size_t>& which,
+                  const std::vector<ToRefine>& again, const std::string& why, Round& r) {
+  std::string names;
+  for (const auto& a : again) names += (names.empty() ? "" : ", ") + a.cand->effect + " (" + a.cand->equation + ")";
+  c.say("  " + why + ": " + names);
+  const std::vector<Trial> better = refine(c, again, h.known_scales);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    Trial& t = r.trials[which[k]];
+    if (!better[k].ok || (t.ok && better[k].cost >= t.cost)) continue;
+    const double gain = t.screening_gain;
+    t = better[k];
+    t.screening_gain = gain;
+  }
+}
+
 // A hypothesis adds a term to the current model: with its term switched off it *is* the current
 // model, so at its optimum it cannot fit worse than the baseline (the current model calibrated
 // with the same budget, or a better optimum of its parameters a trial found). When its refinement
@@ -729,14 +746,7 @@ bool refine_worse_than_the_baseline(const Context& c, const HypothesisSearch& h,
     }
   }
   if (again.empty()) return false;
-  std::string names;
-  for (const auto& a : again) names += (names.empty() ? "" : ", ") + a.cand->effect + " (" + a.cand->equation + ")";
-  c.say("  refining again from the current model's optimum, switched off (ended worse than it): " + names);
-  const std::vector<Trial> from_baseline = refine(c, again, h.known_scales);
-  for (std::size_t k = 0; k < which.size(); ++k) {
-    Trial& t = r.trials[which[k]];
-    if (from_baseline[k].ok && (!t.ok || from_baseline[k].cost < t.cost)) t = from_baseline[k];
-  }
+  refine_again(c, h, which, again, "refining again from the current model's optimum, switched off (ended worse than it)", r);
   return true;
 }
 
@@ -935,18 +945,7 @@ void refine_richer_below_special_cases(const Context& c, const HypothesisSearch&
     which.push_back(i);
     again.push_back({&r.list[i - 1]->candidate, std::move(starts)});
   }
-  if (again.empty()) return;
-  std::string names;
-  for (const auto& a : again) names += (names.empty() ? "" : ", ") + a.cand->effect + " (" + a.cand->equation + ")";
-  c.say("  refining again from a special case's optimum that fits better: " + names);
-  const std::vector<Trial> continued = refine(c, again, h.known_scales);
-  for (std::size_t k = 0; k < which.size(); ++k) {
-    Trial& t = r.trials[which[k]];
-    if (!continued[k].ok || (t.ok && continued[k].cost >= t.cost)) continue;
-    const double gain = t.screening_gain;
-    t = continued[k];
-    t.screening_gain = gain;
-  }
+  if (!again.empty()) refine_again(c, h, which, again, "refining again from a special case's optimum that fits better", r);
 }
 
 HypothesisEvidence evidence_of(const Round& r, const NoiseFloor& noise, const Trial& t) {
