@@ -704,13 +704,33 @@ std::optional<Eigen::VectorXd> switched_off_start(const Candidate& cand, const M
   return values_of(m);
 }
 
-// The round's trials `which` refined again from the starts `again` (the progress line says `why`),
-// each keeping the better of its two results (its screening gain kept with it).
+// A delay has no value that switches it off, so a delay that ends worse than the current model has
+// no start from which Levenberg-Marquardt can only descend. Its candidate's starts hold the
+// calibrated model's parameters, and the calibration has absorbed the missing delay into them (a
+// phase lag made up for by other terms); with the delay added that point can be several times
+// worse than the model without it, or unstable, and the refinement stays there. The file's values
+// were calibrated by no one against the missing delay: the start the nominal's own calibration had.
+// `cand`'s parameter vector with every model parameter the file declares free at the file's value,
+// its own at its screening start. Empty when the candidate has no delay.
+std::optional<Eigen::VectorXd> delay_from_file_start(const Candidate& cand, const ModelFile& file) {
+  bool delay = false;
+  for (const auto& part : parts_of(cand)) delay = delay || part.effect == "time_delay";
+  if (!delay) return {};
+  ModelFile m = cand.model;
+  for (auto& q : m.parameters)
+    if (const auto* v = file.parameter(q.name); v && !q.fixed) q.value = v->value;
+  return values_of(m);
+}
+
+// The round's trials `which` refined again from the starts `again` (a progress line says `why`
+// unless it is empty), each keeping the better of its two results (its screening gain with it).
 void refine_again(const Context& c, const HypothesisSearch& h, const std::vector<std::size_t>& which,
                   const std::vector<ToRefine>& again, const std::string& why, Round& r) {
-  std::string names;
-  for (const auto& a : again) names += (names.empty() ? "" : ", ") + a.cand->effect + " (" + a.cand->equation + ")";
-  c.say("  " + why + ": " + names);
+  if (!why.empty()) {
+    std::string names;
+    for (const auto& a : again) names += (names.empty() ? "" : ", ") + a.cand->effect + " (" + a.cand->equation + ")";
+    c.say("  " + why + ": " + names);
+  }
   const std::vector<Trial> better = refine(c, again, h.known_scales);
   for (std::size_t k = 0; k < which.size(); ++k) {
     Trial& t = r.trials[which[k]];
@@ -732,21 +752,29 @@ void refine_again(const Context& c, const HypothesisSearch& h, const std::vector
 // nothing was named; from the current point it removes 39 %). Such a hypothesis is refined again
 // from the current model's point with its term switched off — a start from which Levenberg-Marquardt
 // can only descend — and keeps the better result. Only those: the others already beat that point,
-// so the extra calibrations are spent where a hypothesis contradicts its own nesting. Returns
-// whether any was refined.
+// so the extra calibrations are spent where a hypothesis contradicts its own nesting. A delay, which
+// nothing switches off, is refined again from the file's values instead (delay_from_file_start).
+// Returns whether any was refined.
 bool refine_worse_than_the_baseline(const Context& c, const HypothesisSearch& h, Round& r) {
   std::vector<std::size_t> which;
   std::vector<ToRefine> again;
+  std::string names, delays;
+  auto add = [&](std::size_t i, Eigen::VectorXd start, std::string& to) {
+    const Candidate& cand = r.list[i - 1]->candidate;
+    which.push_back(i);
+    again.push_back({&cand, {std::move(start)}});
+    to += (to.empty() ? "" : ", ") + cand.effect + " (" + cand.equation + ")";
+  };
   for (std::size_t i = 1; i < r.trials.size(); ++i) {
     const Trial& t = r.trials[i];
     if (t.ok && t.cost <= r.cost_cur) continue;
-    if (auto start = switched_off_start(r.list[i - 1]->candidate, h.current)) {
-      which.push_back(i);
-      again.push_back({&r.list[i - 1]->candidate, {std::move(*start)}});
-    }
+    if (auto start = switched_off_start(r.list[i - 1]->candidate, h.current)) add(i, std::move(*start), names);
+    else if (auto from_file = delay_from_file_start(r.list[i - 1]->candidate, c.model)) add(i, std::move(*from_file), delays);
   }
   if (again.empty()) return false;
-  refine_again(c, h, which, again, "refining again from the current model's optimum, switched off (ended worse than it)", r);
+  if (!names.empty()) c.say("  refining again from the current model's optimum, switched off (ended worse than it): " + names);
+  if (!delays.empty()) c.say("  refining again from the file's values (a delay, ended worse than the current model): " + delays);
+  refine_again(c, h, which, again, "", r);
   return true;
 }
 

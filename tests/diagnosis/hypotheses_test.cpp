@@ -1,7 +1,8 @@
 // The hypothesis search of the diagnosis (src/diagnosis/hypotheses.cpp): on the Coulomb-friction
 // plant the catalogue's Coulomb law is chosen first, with its parameter added to the model; on a
 // clean plant nothing is chosen; a mirror sensor (calibrated from the file's values) is refined
-// even when its screening, linearised at the nominal calibrated on mirrored data, ranks it last.
+// even when its screening, linearised at the nominal calibrated on mirrored data, ranks it last; a
+// delay that ends worse than the current model is refined again from the file's values.
 
 #include <gtest/gtest.h>
 
@@ -331,4 +332,21 @@ TEST(Hypotheses, HypothesisThatEndsWorseThanTheModelItNestsIsRefinedFromThatMode
   for (const auto& e : s.d.effects) names += e.name + " ";
   for (const auto& truth : plant.effects)
     EXPECT_NE(names.find(truth.name), std::string::npos) << truth.name << " not named; named: " << names;
+}
+
+// A delay has no value that switches it off, so when its refinement ends worse than the current
+// model it is refined again from the file's values: the calibrated nominal has absorbed the missing
+// delay into its other parameters, and on this motor (a delay of the drive and a weak quadratic
+// drag) the delay added at that point ended at 3.1 times the current misfit, its pairs diverged,
+// and nothing was named ("unexplained", main 48acb72); from the file's values the delay removes
+// 89 % of the misfit. (Seed 5 003 041: held out in the thirteenth session, development since,
+// docs/reproduction/diagnosis.md.)
+TEST(Hypotheses, DelayThatEndsWorseThanTheModelIsRefinedFromTheFilesValues) {
+  const SyntheticPlant plant = random_plant(5003041);
+  ASSERT_EQ(plant.effects.size(), 2u);
+  ASSERT_EQ(plant.effects[0].name, "time_delay");
+  const std::vector<DiagnosedEffect> named = named_alone(plant);
+  ASSERT_EQ(named.size(), 1u);
+  EXPECT_EQ(named[0].name, "time_delay");
+  EXPECT_EQ(named[0].equation, plant.effects[0].where);
 }
