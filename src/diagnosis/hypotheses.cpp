@@ -556,8 +556,8 @@ std::optional<Eigen::VectorXd> pair_switched_on_start(const Context& c, const Ca
 // The starts of a richer hypothesis at the optimum of a calibrated special case of it: exactly
 // there (the richer law's nonlinear parameters on its grid: from each such start it cannot end
 // worse than the special case) and switched on there. One effect against one effect, or a pair
-// against the pair with the same other member; none otherwise (asymmetric friction against
-// Coulomb friction + an offset: an equality between its parameters, not a value).
+// against the pair with the same other member; none otherwise (asymmetric friction: its nestings
+// tie its parameters together, Fc_pos = Fc_neg = Fc or Fc ± offset, rather than fix a value).
 std::vector<Eigen::VectorXd> starts_from_special_case(const Context& c, const Candidate& richer, const Trial& special) {
   std::vector<Eigen::VectorXd> starts;
   if (richer.parts.empty()) {
