@@ -201,13 +201,22 @@ Diagnosis diagnose_forced(unsigned seed, const std::string& effect, std::vector<
   return diagnose(p.nominal, p.estimation, &p.validation, o);
 }
 
-// The misfit (% of the current model's) of a refined hypothesis's progress line in round 1; NaN
-// when it was not refined.
-double refined_misfit(const std::vector<std::string>& lines, const std::string& hypothesis) {
-  for (const auto& l : lines)
+// The misfits (% of the current model's) of a hypothesis's progress lines in round 1, one per
+// trial of it (a hypothesis can be refined twice, e.g. from a pair's optimum).
+std::vector<double> refined_misfits(const std::vector<std::string>& lines, const std::string& hypothesis) {
+  std::vector<double> out;
+  for (const auto& l : lines) {
+    if (l.find("round 2:") != std::string::npos) break;
     if (const auto at = l.find("    " + hypothesis + ": misfit "); at != std::string::npos)
-      return std::stod(l.substr(at + hypothesis.size() + 13));
-  return std::numeric_limits<double>::quiet_NaN();
+      out.push_back(std::stod(l.substr(at + hypothesis.size() + 13)));
+  }
+  return out;
+}
+
+// The first of them; NaN when it was not refined.
+double refined_misfit(const std::vector<std::string>& lines, const std::string& hypothesis) {
+  const std::vector<double> all = refined_misfits(lines, hypothesis);
+  return all.empty() ? std::numeric_limits<double>::quiet_NaN() : all.front();
 }
 
 }  // namespace
@@ -224,6 +233,34 @@ TEST(Hypotheses, RicherLawIsRefinedFromItsSpecialCasesOptimumAndFitsAtLeastAsWel
   ASSERT_TRUE(std::isfinite(coulomb));
   ASSERT_TRUE(std::isfinite(stribeck)) << "the Stribeck law was not refined beside Coulomb's";
   EXPECT_LE(stribeck, coulomb);
+}
+
+// A richer law never ends worse than a special case of it calibrated in the same round, whenever
+// that special case was found. On this plant Coulomb friction reached 29.6 % of the misfit from
+// the optimum of a pair whose hysteresis does nothing, after the Stribeck law had been refined
+// from Coulomb's own optimum (33.5 %) and ended at 31.5 %: Coulomb was named (main a7df121).
+// Refined again from the better Coulomb optimum, the Stribeck law passes the nested rule against
+// it. (Seed 5 002 818: held out in the thirteenth session, development since,
+// docs/reproduction/diagnosis.md.)
+TEST(Hypotheses, RicherLawIsRefinedAgainFromASpecialCaseFoundLaterThatFitsBetter) {
+  const SyntheticPlant plant = random_plant(5002818);
+  ASSERT_EQ(plant.effects.size(), 1u);
+  ASSERT_EQ(plant.effects[0].name, "stribeck_friction");
+  std::vector<std::string> lines;
+  DiagnosisOptions o;
+  o.threads = 1;
+  o.max_effects = 1;
+  o.progress = [&lines](const std::string& s) { lines.push_back(s); };
+  const Diagnosis d = diagnose(plant.nominal, plant.estimation, &plant.validation, o);
+  const std::string at = " (" + plant.effects[0].where + ")";
+  const std::vector<double> coulomb = refined_misfits(lines, "coulomb_friction" + at);
+  const std::vector<double> stribeck = refined_misfits(lines, "stribeck_friction" + at);
+  ASSERT_GE(coulomb.size(), 2u) << "Coulomb friction is no longer also reached from a pair's optimum";
+  ASSERT_EQ(stribeck.size(), 1u);
+  EXPECT_LE(stribeck[0], *std::min_element(coulomb.begin(), coulomb.end()));
+  ASSERT_FALSE(d.effects.empty());
+  EXPECT_EQ(d.effects[0].name, "stribeck_friction");
+  EXPECT_EQ(d.effects[0].equation, plant.effects[0].where);
 }
 
 // The guard: a Coulomb plant whose Stribeck law fits a little better (6.7 % against 7.6 % of the
