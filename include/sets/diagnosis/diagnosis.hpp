@@ -34,6 +34,8 @@ struct DiagnosisOptions {
   double noise_floor_factor = 1.5;   // > 0: stop as soon as the residual tests say the model is within
                                      // the noise; 0: never (hypotheses must fail the rules on their own)
   int refine = 4;                    // hypotheses refined by output error per round (best screened)
+  bool shortlist_slots = true;       // also refine the best single effect of every place with none
+                                     // in the shortlist, and the best by linearised gain
   int global_step_starts = 2;        // stage 4: starts of the global step over the effects' parameters
                                      // that are calibrated (0: none; the estimate is the search's optimum)
   int threads = 2;
