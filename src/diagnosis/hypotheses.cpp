@@ -653,6 +653,15 @@ AcceptanceRules rules_of(const DiagnosisOptions& opt) {
   return rules;
 }
 
+ScreeningOptions screening_options(const DiagnosisOptions& opt, const std::vector<double>& bound) {
+  ScreeningOptions so;
+  so.substeps = opt.screening_substeps;
+  so.threads = opt.threads;
+  so.sparsity_tolerance = opt.sparsity_tolerance;
+  so.noise_bound = bound;
+  return so;
+}
+
 // Every catalogue hypothesis on the current model screened by least squares; the shortlist.
 void screen_round(const Context& c, const HypothesisSearch& h, const std::vector<std::string>& chosen,
                   const std::vector<double>& bound, Round& r, Diagnosis& d) {
@@ -661,12 +670,7 @@ void screen_round(const Context& c, const HypothesisSearch& h, const std::vector
   r.current_simulation = cur_sim.simulate(values_of(h.current));
   const std::vector<Candidate> cands = generate_candidates(h.current, r.current_simulation, c.estimation, excluded_by(chosen));
   c.say("round " + std::to_string(r.index + 1) + ": screening " + std::to_string(cands.size()) + " hypotheses by least squares");
-  ScreeningOptions so;
-  so.substeps = opt.screening_substeps;
-  so.threads = opt.threads;
-  so.sparsity_tolerance = opt.sparsity_tolerance;
-  so.noise_bound = bound;
-  r.screening = screen_hypotheses(h.current, c.estimation, cands, so);
+  r.screening = screen_hypotheses(h.current, c.estimation, cands, screening_options(opt, bound));
   d.hypotheses_screened += static_cast<int>(cands.size());
   r.list = shortlist(r.screening, opt.refine);
 }
@@ -703,12 +707,7 @@ void screen_at_file_values(const Context& c, const HypothesisSearch& h, const st
     const SimulationResult s = sim.simulate(values_of(at));
     if (!s.outputs.allFinite()) return;
     cands = generate_candidates(at, s, c.estimation, excluded_by(chosen));
-    ScreeningOptions so;
-    so.substeps = opt.screening_substeps;
-    so.threads = opt.threads;
-    so.sparsity_tolerance = opt.sparsity_tolerance;
-    so.noise_bound = bound;
-    r.at_file = screen_hypotheses(at, c.estimation, cands, so);
+    r.at_file = screen_hypotheses(at, c.estimation, cands, screening_options(opt, bound));
   } catch (const std::exception&) {
     return;
   }
