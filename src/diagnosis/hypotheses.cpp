@@ -570,12 +570,14 @@ std::vector<Eigen::VectorXd> starts_from_special_case(const Context& c, const Ca
     if (other.effect != same.effect || other.equation != same.equation || other.delay_samples != same.delay_samples) continue;
     Fixed fixed;
     std::vector<std::string> on_grid;
-    std::optional<ModelFile> m = pair_at_special_case(richer, special, j, fixed, on_grid);
-    if (!m) continue;
+    const std::optional<ModelFile> at = pair_at_special_case(richer, special, j, fixed, on_grid);
+    if (!at) continue;
     const Candidate& law = richer.parts[j];
+    ModelFile m = *at;
     for (const auto& g : law.grid.empty() ? std::vector<std::vector<double>>{{}} : law.grid)
-      if (set_on_grid(*m, on_grid, fixed, g)) starts.push_back(values_of(*m));
-    if (auto on = pair_switched_on_start(c, richer, special, j)) starts.push_back(std::move(*on));
+      if (set_on_grid(m, on_grid, fixed, g)) starts.push_back(values_of(m));
+    // pair_switched_on_start, from the embedding already built
+    if (auto on = switch_on(c, richer.model, law, special.cand.parts[j], *at, fixed, on_grid)) starts.push_back(std::move(*on));
   }
   return starts;
 }
