@@ -620,6 +620,8 @@ struct Round {
   std::vector<std::size_t> ok;                   // trials that pass every rule
   std::map<std::size_t, std::string> beats;      // a richer law kept: the special cases it beat
   std::deque<ScreenedHypothesis> built;          // hypotheses the round built itself (list points here)
+  Screening at_file;                             // round 1, nominal far: the screening at the file's values
+  std::map<const ScreenedHypothesis*, std::vector<Eigen::VectorXd>> from_file;  // listed: starts from it too
 };
 
 // A richer law refined from the screening's starts can end in a worse basin than its special case
@@ -678,6 +680,15 @@ AcceptanceRules rules_of(const DiagnosisOptions& opt) {
   return rules;
 }
 
+ScreeningOptions screening_options(const DiagnosisOptions& opt, const std::vector<double>& bound) {
+  ScreeningOptions so;
+  so.substeps = opt.screening_substeps;
+  so.threads = opt.threads;
+  so.sparsity_tolerance = opt.sparsity_tolerance;
+  so.noise_bound = bound;
+  return so;
+}
+
 // Every catalogue hypothesis on the current model screened by least squares; the shortlist.
 void screen_round(const Context& c, const HypothesisSearch& h, const std::vector<std::string>& chosen,
                   const std::vector<double>& bound, Round& r, Diagnosis& d) {
@@ -686,14 +697,70 @@ void screen_round(const Context& c, const HypothesisSearch& h, const std::vector
   r.current_simulation = cur_sim.simulate(values_of(h.current));
   const std::vector<Candidate> cands = generate_candidates(h.current, r.current_simulation, c.estimation, excluded_by(chosen));
   c.say("round " + std::to_string(r.index + 1) + ": screening " + std::to_string(cands.size()) + " hypotheses by least squares");
-  ScreeningOptions so;
-  so.substeps = opt.screening_substeps;
-  so.threads = opt.threads;
-  so.sparsity_tolerance = opt.sparsity_tolerance;
-  so.noise_bound = bound;
-  r.screening = screen_hypotheses(h.current, c.estimation, cands, so);
+  r.screening = screen_hypotheses(h.current, c.estimation, cands, screening_options(opt, bound));
   d.hypotheses_screened += static_cast<int>(cands.size());
   r.list = shortlist(r.screening, opt.refine, opt.shortlist_slots);
+}
+
+// The same hypothesis (effects, places, delays and parameters alike) generated on two models.
+bool same_hypothesis(const Candidate& a, const Candidate& b) {
+  const std::vector<Candidate> x = parts_of(a), y = parts_of(b);
+  if (x.size() != y.size() || a.model.parameters.size() != b.model.parameters.size()) return false;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (x[k].effect != y[k].effect || x[k].equation != y[k].equation || x[k].delay_samples != y[k].delay_samples) return false;
+  for (std::size_t k = 0; k < a.model.parameters.size(); ++k)
+    if (a.model.parameters[k].name != b.model.parameters[k].name) return false;
+  return true;
+}
+
+// Screening linearises at the current model and regresses its residual on features computed from
+// its simulation. Where the calibrated nominal cannot be brought near the data it has collapsed
+// (5 003 182: Kb at its bound, negative damping, fit -72.6 %): the missing effect's feature is
+// near zero there and the effect never reaches the shortlist. The file's values were calibrated
+// against nothing wrong: in round 1 the catalogue is screened there too, its shortlist refined
+// from those starts as well (a hypothesis listed by both: from both sets of starts; one listed
+// only there: added). Every trial is then judged against the same baseline, so this only adds
+// starts and candidates, no rule.
+void screen_at_file_values(const Context& c, const HypothesisSearch& h, const std::vector<std::string>& chosen,
+                           const std::vector<double>& bound, Round& r, Diagnosis& d) {
+  ModelFile at = h.current;
+  for (auto& q : at.parameters)
+    if (const auto* v = c.model.parameter(q.name); v && !q.fixed) q.value = v->value;
+  if (values_of(at) == values_of(h.current)) return;
+  const DiagnosisOptions& opt = c.options;
+  std::vector<Candidate> cands;
+  try {
+    Simulator sim(at, c.estimation, {opt.screening_substeps});
+    const SimulationResult s = sim.simulate(values_of(at));
+    if (!s.outputs.allFinite()) return;
+    cands = generate_candidates(at, s, c.estimation, excluded_by(chosen));
+    r.at_file = screen_hypotheses(at, c.estimation, cands, screening_options(opt, bound));
+  } catch (const std::exception&) {
+    return;
+  }
+  d.hypotheses_screened += static_cast<int>(cands.size());
+  std::string added;
+  int both = 0;
+  const std::size_t listed = r.list.size();
+  for (const ScreenedHypothesis* f : shortlist(r.at_file, opt.refine, opt.shortlist_slots)) {
+    auto same = std::find_if(r.list.begin(), r.list.begin() + static_cast<std::ptrdiff_t>(listed),
+                             [&](const ScreenedHypothesis* l) { return same_hypothesis(l->candidate, f->candidate); });
+    if (same != r.list.begin() + static_cast<std::ptrdiff_t>(listed)) {
+      auto& starts = r.from_file[*same];
+      starts.insert(starts.end(), f->starts.begin(), f->starts.end());
+      starts.push_back(values_of(f->candidate.model));
+      ++both;
+      continue;
+    }
+    ScreenedHypothesis sh = *f;
+    sh.starts.push_back(values_of(f->candidate.model));
+    r.built.push_back(std::move(sh));
+    r.list.push_back(&r.built.back());
+    added += (added.empty() ? "" : ", ") + f->candidate.effect + " (" + f->candidate.equation + ")";
+  }
+  c.say("  the calibrated nominal is far from the data: screened " + std::to_string(cands.size()) +
+        " hypotheses at the file's values too; " + std::to_string(both) + " of their shortlist refined from there as well" +
+        (added.empty() ? "" : ", added: " + added));
 }
 
 // A hypothesis whose calibration merely found a better optimum of the old parameters (its own
@@ -815,7 +882,11 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   Candidate null;
   null.model = h.current;
   std::vector<ToRefine> to_refine{{&null, {values_of(h.current)}}};
-  for (const auto* l : r.list) to_refine.push_back({&l->candidate, l->starts});
+  for (const auto* l : r.list) {
+    to_refine.push_back({&l->candidate, l->starts});
+    if (auto f = r.from_file.find(l); f != r.from_file.end())
+      to_refine.back().starts.insert(to_refine.back().starts.end(), f->second.begin(), f->second.end());
+  }
   r.trials = refine(c, to_refine, h.known_scales);
   continue_from_special_cases(c, h, r);
   c.say("  refined; judging them by the acceptance rules");
@@ -1364,7 +1435,6 @@ bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise)
 }  // namespace
 
 HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
-  (void)nominal;
   const DiagnosisOptions& opt = c.options;
   HypothesisSearch h;
   h.current = d.nominal;
@@ -1381,6 +1451,7 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     Round r;
     r.index = round;
     screen_round(c, h, chosen, bound, r, d);
+    if (round == 0 && d.nominal_far && nominal.file_values_simulated) screen_at_file_values(c, h, chosen, bound, r, d);
     refine_round(c, h, r, d);
     refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
     refine_richer_pairs(c, h, rules.min_own_term, r, d);
