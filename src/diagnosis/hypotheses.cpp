@@ -334,9 +334,12 @@ std::vector<Candidate> missing_special_cases(const Context& c, const ModelFile& 
 
 // Two slots beside the best by score, because a linearised screening misranks some laws whatever
 // their place in the model. (1) One per place: the best single effect of every equation, input and
-// output that has none in the shortlist yet, if its linearisation explains any of the residual at
-// all (gain > 0): the score lists first the places whose laws linearise well (an input saturation's
-// linearised gain is small; 5 002 871 lost its input saturation to laws of other equations).
+// output where no listed hypothesis (single or a pair's member) enters yet, if its linearisation
+// explains any of the residual at all (gain > 0): the score lists first the places whose laws
+// linearise well (an input saturation's linearised gain is small; 5 002 871 lost its input
+// saturation to laws of other equations). A place a pair already covers gets none: a law there
+// alone was no better than one refined beside another (5 002 818: hysteresis at the sensor, listed
+// in a pair, named alone in place of the true Stribeck law on validation).
 // (2) The best by linearised gain whatever its number of parameters: the score's factor per
 // parameter is a prior for naming, which the acceptance rules apply again after refinement; before
 // it, it can push the law that explains most out of the shortlist (5 002 962 round 3, asymmetric
@@ -345,7 +348,7 @@ template <class Take>
 void take_slots(const Screening& s, const std::vector<const ScreenedHypothesis*>& listed, Take&& take) {
   std::set<std::string> covered;
   for (const auto* h : listed)
-    if (h->candidate.parts.empty()) covered.insert(h->candidate.equation);
+    for (const auto& part : parts_of(h->candidate)) covered.insert(part.equation);
   for (const auto& h : s.ranked)
     if (h.candidate.parts.empty() && h.gain > 0 && !covered.count(h.candidate.equation) && take(h))
       covered.insert(h.candidate.equation);
