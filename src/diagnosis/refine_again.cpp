@@ -1,0 +1,375 @@
+// Stage 3 of the diagnosis, second refinements within a round: hypotheses whose first
+// refinement can have ended in the wrong basin are refined again from other starts — from a
+// special case's optimum, from the model they nest switched off, from the file's values (a
+// delay), a pair's members alone and a richer pair from the pair's optimum; and a chosen delay
+// refined at its neighbouring whole numbers of samples.
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <optional>
+
+#include "diagnosis/hypothesis_search.hpp"
+
+namespace sets::diagnosis_stage {
+
+// A richer law refined from the screening's starts can end in a worse basin than its special case
+// (700 067: Stribeck 4.4 % of the misfit, Coulomb 4.3 %), though it contains it. Each one-effect
+// richer law in the round is refined again from the optimum of each special case refined beside
+// it (starts_at_special_case) and from that optimum with its extra term switched on
+// (switched_on_start), and keeps the better of the two results. A richer law the shortlist left
+// out whose special case is in it is refined from the switched-on start alone: its screening
+// linearised it at the special case's neighbourhood too (at Fs = 0 vs does nothing), so its rank
+// says little about its own basin (5 001 597: Coulomb listed, Stribeck not).
+void continue_from_special_cases(const Context& c, const HypothesisSearch& h, Round& r) {
+  std::vector<const ScreenedHypothesis*> laws(r.list.begin(), r.list.end());
+  const std::size_t listed = laws.size();
+  for (const auto& s : r.screening.ranked) {
+    if (!s.candidate.parts.empty() || std::find(laws.begin(), laws.end(), &s) != laws.end()) continue;
+    for (std::size_t j = 1; j < r.trials.size(); ++j)
+      if (r.trials[j].ok && r.trials[j].cand.parts.empty() && nests(s.candidate, r.trials[j].cand)) {
+        laws.push_back(&s);
+        break;
+      }
+  }
+  std::vector<std::size_t> which;
+  std::vector<ToRefine> again;
+  for (std::size_t i = 0; i < laws.size(); ++i) {
+    std::vector<Eigen::VectorXd> starts;
+    for (std::size_t j = 1; j < r.trials.size(); ++j) {
+      if (j == i + 1) continue;  // itself (only listed laws have a trial)
+      if (i < listed)
+        for (auto& s : starts_at_special_case(laws[i]->candidate, r.trials[j])) starts.push_back(std::move(s));
+      if (auto on = switched_on_start(c, laws[i]->candidate, r.trials[j])) starts.push_back(std::move(*on));
+    }
+    if (starts.empty()) continue;
+    which.push_back(i);
+    again.push_back({&laws[i]->candidate, std::move(starts)});
+  }
+  if (again.empty()) return;
+  const std::vector<Trial> continued = refine(c, again, h.known_scales);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    const std::size_t i = which[k];
+    if (i >= listed) {
+      if (!continued[k].ok) continue;
+      r.list.push_back(laws[i]);
+      r.trials.push_back(continued[k]);
+      continue;
+    }
+    Trial& t = r.trials[i + 1];
+    if (continued[k].ok && (!t.ok || continued[k].cost < t.cost)) t = continued[k];
+  }
+}
+
+namespace {
+
+// `cand`'s parameter vector at the current model's point with its own term switched off (its new
+// parameters at their neutral values; NaN: irrelevant, left where they are): the current model
+// itself. Empty when no parameter switches the term off (a delay, a sensor law without one) or
+// when switching it off does not give the current model back (a law that replaces a term).
+std::optional<Eigen::VectorXd> switched_off_start(const Candidate& cand, const ModelFile& current) {
+  ModelFile m = cand.model;
+  for (auto& q : m.parameters)
+    if (const auto* v = current.parameter(q.name)) q.value = v->value;
+  bool any = false;
+  for (const auto& part : parts_of(cand)) {
+    const PhysicsEffect* e = find_effect(part.effect);
+    if (part.effect == "time_delay" || (e && e->placement == "replaces a*x")) return {};
+    for (std::size_t k = 0; k < part.parameters.size(); ++k)
+      if (!std::isnan(part.neutral[k])) m.parameter(part.parameters[k])->value = part.neutral[k], any = true;
+  }
+  if (!any) return {};
+  return values_of(m);
+}
+
+// A delay has no value that switches it off, so a delay that ends worse than the current model has
+// no start from which Levenberg-Marquardt can only descend. Its candidate's starts hold the
+// calibrated model's parameters, and the calibration has absorbed the missing delay into them (a
+// phase lag made up for by other terms); with the delay added that point can be several times
+// worse than the model without it, or unstable, and the refinement stays there. The file's values
+// were calibrated by no one against the missing delay: the start the nominal's own calibration had.
+// `cand`'s parameter vector with every model parameter the file declares free at the file's value,
+// its own at its screening start. Empty when the candidate has no delay.
+std::optional<Eigen::VectorXd> delay_from_file_start(const Candidate& cand, const ModelFile& file) {
+  bool delay = false;
+  for (const auto& part : parts_of(cand)) delay = delay || part.effect == "time_delay";
+  if (!delay) return {};
+  ModelFile m = cand.model;
+  for (auto& q : m.parameters)
+    if (const auto* v = file.parameter(q.name); v && !q.fixed) q.value = v->value;
+  return values_of(m);
+}
+
+// The round's trials `which` refined again from the starts `again` (a progress line says `why`
+// unless it is empty), each keeping the better of its two results (its screening gain with it).
+void refine_again(const Context& c, const HypothesisSearch& h, const std::vector<std::size_t>& which,
+                  const std::vector<ToRefine>& again, const std::string& why, Round& r) {
+  if (!why.empty()) {
+    std::string names;
+    for (const auto& a : again) names += (names.empty() ? "" : ", ") + a.cand->effect + " (" + a.cand->equation + ")";
+    c.say("  " + why + ": " + names);
+  }
+  const std::vector<Trial> better = refine(c, again, h.known_scales);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    Trial& t = r.trials[which[k]];
+    if (!better[k].ok || (t.ok && better[k].cost >= t.cost)) continue;
+    const double gain = t.screening_gain;
+    t = better[k];
+    t.screening_gain = gain;
+  }
+}
+
+}  // namespace
+
+// A hypothesis adds a term to the current model: with its term switched off it *is* the current
+// model, so at its optimum it cannot fit worse than the baseline (the current model calibrated
+// with the same budget, or a better optimum of its parameters a trial found). When its refinement
+// from the screening's starts ends worse, or cannot be calibrated, every start lay in another
+// basin: the screening linearises at the current point, and where the calibrated nominal is far
+// from the data its least-squares step puts the new term, and the model's parameters with it,
+// where the output error is many times the current model's (random plant 5 001 938, an offset
+// beside a cubic stiffness, nominal fit 15 %: the offset ended at 6.8x the current misfit and
+// nothing was named; from the current point it removes 39 %). Such a hypothesis is refined again
+// from the current model's point with its term switched off — a start from which Levenberg-Marquardt
+// can only descend — and keeps the better result. Only those: the others already beat that point,
+// so the extra calibrations are spent where a hypothesis contradicts its own nesting. A delay, which
+// nothing switches off, is refined again from the file's values instead (delay_from_file_start).
+// Returns whether any was refined.
+bool refine_worse_than_the_baseline(const Context& c, const HypothesisSearch& h, Round& r) {
+  std::vector<std::size_t> which;
+  std::vector<ToRefine> again;
+  std::string names, delays;
+  auto add = [&](std::size_t i, Eigen::VectorXd start, std::string& to) {
+    const Candidate& cand = r.list[i - 1]->candidate;
+    which.push_back(i);
+    again.push_back({&cand, {std::move(start)}});
+    to += (to.empty() ? "" : ", ") + cand.effect + " (" + cand.equation + ")";
+  };
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    if (t.ok && t.cost <= r.cost_cur) continue;
+    if (auto start = switched_off_start(r.list[i - 1]->candidate, h.current)) add(i, std::move(*start), names);
+    else if (auto from_file = delay_from_file_start(r.list[i - 1]->candidate, c.model)) add(i, std::move(*from_file), delays);
+  }
+  if (again.empty()) return false;
+  if (!names.empty()) c.say("  refining again from the current model's optimum, switched off (ended worse than it): " + names);
+  if (!delays.empty()) c.say("  refining again from the file's values (a delay, ended worse than the current model): " + delays);
+  refine_again(c, h, which, again, "", r);
+  return true;
+}
+
+namespace {
+
+// The single hypothesis of `part` (a pair's member) in the screening, if it was screened alone.
+const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& part) {
+  for (const auto& x : s.ranked)
+    if (x.candidate.parts.empty() && x.candidate.effect == part.effect && x.candidate.equation == part.equation &&
+        x.candidate.delay_samples == part.delay_samples)
+      return &x;
+  return nullptr;
+}
+
+// The share of pair `t`'s misfit that its member `k` removes: its cost with that member switched off
+// against its own; NaN where the member cannot be switched off.
+double member_share(const Trial& t, std::size_t k) {
+  const double off = t.part_neutral[k];
+  return std::isfinite(off) && off > 0 ? (off - t.cost) / off : kNaN;
+}
+
+}  // namespace
+
+// A pair one of whose members does nothing at the pair's optimum (switching it off costs less than
+// the own-term share) found the other member alone. When that fits better than the member's own
+// trial (or it had none), the pair reached a point the member's own starts missed (e.g. a delay
+// whose starts stopped in another basin): the member is refined again from the pair's optimum and
+// judged as itself, beside its earlier trial (the two can differ on validation; 5 000 932).
+void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d) {
+  std::vector<const ScreenedHypothesis*> again;  // each once, with every pair's optimum as a start
+  std::vector<ToRefine> to_refine;
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    if (!t.ok || t.part_neutral.size() != 2) continue;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Candidate& kept = t.cand.parts[1 - k];
+      if (!(member_share(t, k) < min_own_term) || member_share(t, 1 - k) < min_own_term) continue;  // NaN: cannot be switched off
+      const ScreenedHypothesis* alone = screened_alone(r.screening, kept);
+      if (!alone) continue;
+      // Refined alone already, to a point that fits at least as well: nothing was missed.
+      const auto listed = std::find(r.list.begin(), r.list.end(), alone);
+      if (listed != r.list.end()) {
+        const Trial& own = r.trials[static_cast<std::size_t>(listed - r.list.begin()) + 1];
+        if (own.ok && own.cost <= t.part_neutral[k]) continue;
+      }
+      auto at = static_cast<std::size_t>(std::find(again.begin(), again.end(), alone) - again.begin());
+      if (at == again.size()) {
+        again.push_back(alone);
+        to_refine.push_back({&alone->candidate, {}});
+      }
+      to_refine[at].starts.push_back(values_of(mapped_by_role(alone->candidate, kept, t.model)));
+    }
+  }
+  if (again.empty()) return;
+  std::string names;
+  for (const auto* alone : again) names += (names.empty() ? "" : ", ") + alone->candidate.effect + " (" + alone->candidate.equation + ")";
+  c.say("  refining from a pair's optimum where its other member does nothing: " + names);
+  std::vector<Trial> trials = refine(c, to_refine, h.known_scales);
+  d.hypotheses_refined += static_cast<int>(trials.size());
+  for (std::size_t n = 0; n < trials.size(); ++n) {
+    if (!trials[n].ok) continue;
+    trials[n].screening_gain = again[n]->gain;
+    r.list.push_back(again[n]);
+    r.trials.push_back(std::move(trials[n]));
+  }
+}
+
+namespace {
+
+// `effect` at `equation` (a delay: of `samples`) among `cands`, if there.
+const Candidate* find_candidate(const std::vector<Candidate>& cands, const std::string& effect, const std::string& equation,
+                                int samples) {
+  for (const auto& k : cands)
+    if (k.parts.empty() && k.effect == effect && k.equation == equation && k.delay_samples == samples) return &k;
+  return nullptr;
+}
+
+// The pair of `special`'s members with member `j` replaced by the one-effect law `richer` at its
+// place, built on `current` as screening builds pairs (pair_on).
+std::optional<Candidate> richer_pair(const Context& c, const std::vector<Candidate>& on_current, const Candidate& special,
+                                     std::size_t j, const std::string& richer) {
+  const Candidate &a = special.parts[0], &b = special.parts[1];
+  const Candidate* first = j == 0 ? find_candidate(on_current, richer, a.equation, 0)
+                                  : find_candidate(on_current, a.effect, a.equation, a.delay_samples);
+  if (!first) return {};
+  return pair_on(c, *first, [&](const std::vector<Candidate>& on_first) {
+    return j == 1 ? find_candidate(on_first, richer, b.equation, 0) : find_candidate(on_first, b.effect, b.equation, b.delay_samples);
+  });
+}
+
+}  // namespace
+
+// A pair (two effects at once) whose member is the special case of a richer law (Coulomb friction
+// beside a dead zone) is refined in its own context, but the richer law only alone, beside the
+// current model that still misses the other effect: there the richer law's extra term is fitted
+// against what the missing effect leaves, and it did not beat its special case (development
+// 5 002 724, Stribeck friction and a dead zone: the pair Coulomb + dead zone named, Stribeck then
+// excluded as one friction law per place). So each pair that beats the current model and has
+// such a member is refined once more with that member replaced by the richer law switched on
+// at the pair's optimum (pair_switched_on_start): one start, the richer pair's own basin, as for
+// one effect. The richer pair is then judged by the nested rule against the pair it contains
+// (judge_round): named only where its extra parameters remove >= 10 % of that pair's misfit, more
+// than the noise could, and the data exclude the special case. Only pairs both of whose members
+// matter at the pair's optimum (own-term share >= the rule's): where the other member does nothing
+// the pair is its special case alone, whose richer law is refined alone already, and the richer
+// pair's extra freedom let the idle member fit with it what the law alone should (the fixed suite's
+// Stribeck plant: Coulomb + cubic stiffness, the cubic at 2 %, became Stribeck + cubic stiffness).
+void refine_richer_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d) {
+  std::vector<Candidate> on_current;
+  try {
+    on_current = generate_candidates(h.current, r.current_simulation, c.estimation);
+  } catch (const std::exception&) {
+    return;
+  }
+  std::deque<Candidate> pairs;  // stable addresses for ToRefine
+  std::vector<ToRefine> to_refine;
+  std::vector<std::size_t> from;  // the special pair's trial
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    if (!t.ok || t.cand.parts.size() != 2 || !(t.cost < r.cost_cur)) continue;
+    if (member_share(t, 0) < min_own_term || member_share(t, 1) < min_own_term) continue;  // NaN: cannot be switched off, matters
+    for (std::size_t j = 0; j < 2; ++j)
+      for (const auto& e : physics_catalogue())
+        for (const auto& sc : e.special_cases) {
+          if (sc.effects != std::vector<std::string>{t.cand.parts[j].effect}) continue;
+          try {
+            std::optional<Candidate> p = richer_pair(c, on_current, t.cand, j, e.name);
+            if (!p) continue;
+            std::optional<Eigen::VectorXd> start = pair_switched_on_start(c, *p, t, j);
+            if (!start) continue;
+            pairs.push_back(std::move(*p));
+            to_refine.push_back({&pairs.back(), {std::move(*start)}});
+            from.push_back(i);
+          } catch (const std::exception&) {
+          }
+        }
+  }
+  if (to_refine.empty()) return;
+  std::string names;
+  for (const auto& x : to_refine) names += (names.empty() ? "" : ", ") + x.cand->effect + " (" + x.cand->equation + ")";
+  c.say("  refining pairs with a member switched on as its richer law: " + names);
+  std::vector<Trial> trials = refine(c, to_refine, h.known_scales);
+  d.hypotheses_refined += static_cast<int>(trials.size());
+  for (std::size_t n = 0; n < trials.size(); ++n) {
+    if (!trials[n].ok) continue;
+    ScreenedHypothesis sh;
+    sh.candidate = trials[n].cand;
+    sh.gain = r.list[from[n] - 1]->gain;
+    r.built.push_back(std::move(sh));
+    trials[n].screening_gain = r.built.back().gain;
+    r.list.push_back(&r.built.back());
+    r.trials.push_back(std::move(trials[n]));
+  }
+}
+
+// A richer hypothesis contains each special case of it: it must never end worse than one
+// calibrated in the same round. It can: its starts were taken before that special case's optimum
+// was found (5 002 818: Coulomb friction reached 29.6 % of the misfit from a pair's optimum where
+// the hysteresis does nothing, after the Stribeck law had been refined from Coulomb's own 33.5 %
+// and ended at 31.5 %; named Coulomb), or a richer pair was refined from its switched-on start
+// alone. Each richer hypothesis that ends worse than a special case of it (or could not be
+// calibrated) is refined once more from the best such special case's optimum
+// (starts_from_special_case) and keeps the better result; the extra calibrations are spent only
+// where a hypothesis contradicts its own nesting.
+void refine_richer_below_special_cases(const Context& c, const HypothesisSearch& h, Round& r) {
+  std::vector<std::size_t> which;
+  std::vector<ToRefine> again;
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    const Trial* best = nullptr;
+    for (std::size_t j = 1; j < r.trials.size(); ++j) {
+      const Trial& s = r.trials[j];
+      if (j == i || !s.ok || !(s.cost < (t.ok ? t.cost : inf)) || (best && best->cost <= s.cost)) continue;
+      if (nests(r.list[i - 1]->candidate, s.cand)) best = &s;
+    }
+    if (!best) continue;
+    std::vector<Eigen::VectorXd> starts = starts_from_special_case(c, r.list[i - 1]->candidate, *best);
+    if (starts.empty()) continue;
+    which.push_back(i);
+    again.push_back({&r.list[i - 1]->candidate, std::move(starts)});
+  }
+  if (!again.empty()) refine_again(c, h, which, again, "refining again from a special case's optimum that fits better", r);
+}
+
+// A delay competes at its best whole number of samples, as every other law competes at its
+// calibrated optimum: the screening grid (1, 2, 3, 4, 6, 8, 11, ...) is coarse, and beside a delay
+// one grid step off another law fits the step's error (5 001 140: a delay of 5 samples screened at
+// 4 or 6, an offset beside it, and the pair was named). Each one-effect delay of the round is moved
+// to the best whole number between its grid neighbours (best_delay) and calibrated there, from its
+// own optimum and from the current model; kept when it fits better.
+void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std::vector<double>& bound, Round& r) {
+  std::vector<std::size_t> which;
+  std::vector<Candidate> better;
+  for (std::size_t i = 1; i < r.trials.size(); ++i) {
+    const Trial& t = r.trials[i];
+    if (!t.ok || !t.cand.parts.empty() || t.cand.effect != "time_delay") continue;
+    Candidate b = best_delay(c, h.current, t.cand, bound);
+    if (b.delay_samples == t.cand.delay_samples) continue;
+    which.push_back(i);
+    better.push_back(std::move(b));
+  }
+  if (better.empty()) return;
+  std::vector<ToRefine> to_refine;
+  for (std::size_t k = 0; k < better.size(); ++k) {
+    const Trial& t = r.trials[which[k]];
+    to_refine.push_back({&better[k], {values_of(mapped_by_role(better[k], t.cand, t.model)), values_of(better[k].model)}});
+  }
+  const std::vector<Trial> moved = refine(c, to_refine, h.known_scales);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    Trial& t = r.trials[which[k]];
+    if (!moved[k].ok || moved[k].cost >= t.cost) continue;
+    const double gain = t.screening_gain;
+    t = moved[k];
+    t.screening_gain = gain;
+  }
+}
+
+}  // namespace sets::diagnosis_stage
