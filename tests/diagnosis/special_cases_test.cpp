@@ -81,3 +81,28 @@ TEST(SpecialCases, RicherLawStartedAtItsSpecialCasesOptimumSimulatesAsTheSpecial
     if (c.parts.empty() && c.effect == "stribeck_friction" && c.equation != coulomb->equation)
       EXPECT_TRUE(starts_at_special_case(c, special).empty()) << c.equation;
 }
+
+// Asymmetric friction reaches Coulomb by an equality (Fc_pos = Fc_neg = Fc, the catalogue's
+// SpecialCase::equal) besides dFv = 0: started there it is Coulomb's optimum itself. Without the
+// equality it had no start at Coulomb's optimum at all (a richer law that could end below it).
+TEST(SpecialCases, AsymmetricFrictionStartedAtCoulombsOptimumSimulatesAsCoulomb) {
+  const test::StageRun s(synthetic_plant("coulomb_friction"), false, 600);
+  const std::vector<Candidate> cs = candidates_on(s);
+  const Candidate* coulomb = find(cs, "coulomb_friction");
+  ASSERT_NE(coulomb, nullptr);
+  const Candidate* asymmetric = find(cs, "asymmetric_friction", coulomb->equation);
+  ASSERT_NE(asymmetric, nullptr);
+  EXPECT_TRUE(nests(*asymmetric, *coulomb));
+  Trial special;
+  special.cand = *coulomb;
+  special.model = coulomb->model;
+  special.ok = true;
+  special.model.parameter(coulomb->parameters[0])->value = 1.7 * coulomb->scales[0];
+  const Simulator at_special(special.model, s.estimation, {s.options.screening_substeps});
+  const Eigen::MatrixXd y_special = at_special.simulate(values_of(special.model)).outputs;
+  const std::vector<Eigen::VectorXd> starts = starts_at_special_case(*asymmetric, special);
+  ASSERT_EQ(starts.size(), 1u);  // no nonlinear parameter: one start
+  const Simulator richer(asymmetric->model, s.estimation, {s.options.screening_substeps});
+  const Eigen::MatrixXd y = richer.simulate(starts[0]).outputs;
+  EXPECT_LE((y - y_special).cwiseAbs().maxCoeff(), 1e-9 * (1 + y_special.cwiseAbs().maxCoeff()));
+}
