@@ -28,7 +28,8 @@ const std::vector<PhysicsEffect>& physics_catalogue() {
        "friction differs with the direction of motion: the residual force against v has a different step and "
        "slope on the two sides of zero",
        // Fc_pos = Fc_neg, dFv = 0; or dFv = 0 alone: Coulomb friction and an offset (equal but at v = 0).
-       {{{"coulomb_friction"}, {{"dFv", 0.0}}}, {{"coulomb_friction", "constant_offset"}, {{"dFv", 0.0}}}}},
+       {{{"coulomb_friction"}, {{"dFv", 0.0}}, {{"Fc_pos", "Fc"}, {"Fc_neg", "Fc"}}},
+        {{"coulomb_friction", "constant_offset"}, {{"dFv", 0.0}}}}},
       {"constant_offset", "additive", "any state equation that is not a kinematic identity q' = v", "- offset",
        "residual of constant sign and size, independent of the operating point", {}},
       {"cubic_stiffness", "additive", "force balance (cubic in the pair's position q) or the equation of a state x "

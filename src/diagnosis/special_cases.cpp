@@ -124,10 +124,27 @@ ModelFile mapped_by_role(const Candidate& target, const Candidate& source, const
 
 namespace {
 
+// The value at `special_model` of the special case's parameter that `law`'s parameter k equals
+// there by the catalogue (SpecialCase::equal: asymmetric friction's Fc_pos = Coulomb's Fc); none
+// when the catalogue ties it to none.
+std::optional<double> equal_in_special_case(const Candidate& law, std::size_t k, const Candidate& special,
+                                            const ModelFile& special_model) {
+  const SpecialCase* sc = find_special_case({special.effect}, law.effect);
+  if (!sc) return {};
+  for (const auto& [role, special_role] : sc->equal) {
+    if (role != law.roles[k]) continue;
+    const auto r = std::find(special.roles.begin(), special.roles.end(), special_role);
+    if (r == special.roles.end()) return {};
+    if (const auto* v = special_model.parameter(special.parameters[static_cast<std::size_t>(r - special.roles.begin())]))
+      return v->value;
+  }
+  return {};
+}
+
 // A one-effect richer law at the calibrated optimum of a one-effect special case of it: the special
-// case's values (the model's and its own, matched by role), the parameters fixed on the way at
-// their fixed value; `on_grid` gets the richer law's nonlinear parameters (grid order). Empty when a parameter of the richer law is none of these (e.g. Fc_pos, Fc_neg of an
-// asymmetric law: an equality, not a value).
+// case's values (the model's and its own, matched by role or by the catalogue's equalities), the
+// parameters fixed on the way at their fixed value; `on_grid` gets the richer law's nonlinear
+// parameters (grid order). Empty when a linear parameter of the richer law is none of these.
 std::optional<ModelFile> at_special_case(const Candidate& richer, const Trial& special, Fixed& fixed,
                                          std::vector<std::string>& on_grid) {
   if (!richer.parts.empty() || !special.cand.parts.empty() || !special.ok || !nests(richer, special.cand, &fixed)) return {};
@@ -137,7 +154,9 @@ std::optional<ModelFile> at_special_case(const Candidate& richer, const Trial& s
     const std::string& name = richer.parameters[k];
     const auto f = std::find_if(fixed.begin(), fixed.end(), [&](const auto& x) { return x.first == name; });
     const bool mapped = std::find(special.cand.roles.begin(), special.cand.roles.end(), richer.roles[k]) != special.cand.roles.end();
+    const std::optional<double> equal = equal_in_special_case(richer, k, special.cand, special.model);
     if (f != fixed.end()) m.parameter(name)->value = f->second;
+    else if (equal) m.parameter(name)->value = *equal;
     else if (!mapped && richer.linear[k]) return {};  // neither fixed nor a value of the special case's
     if (!richer.linear[k]) on_grid.push_back(name);  // set on the grid unless fixed
   }
@@ -269,8 +288,10 @@ std::optional<ModelFile> pair_at_special_case(const Candidate& richer, const Tri
       const auto r = std::find(from.roles.begin(), from.roles.end(), to.roles[k]);
       const auto* v = r == from.roles.end() ? nullptr
                                             : special.model.parameter(from.parameters[static_cast<std::size_t>(r - from.roles.begin())]);
+      const std::optional<double> equal = p == j ? equal_in_special_case(to, k, from, special.model) : std::nullopt;
       if (p == j && f != fixed.end()) m.parameter(to.parameters[k])->value = f->second;
       else if (v) m.parameter(to.parameters[k])->value = v->value;
+      else if (equal) m.parameter(to.parameters[k])->value = *equal;
       else if (to.linear[k]) return {};
       if (p == j && !to.linear[k]) on_grid.push_back(to.parameters[k]);
     }
@@ -293,8 +314,8 @@ std::optional<Eigen::VectorXd> pair_switched_on_start(const Context& c, const Ca
 // The starts of a richer hypothesis at the optimum of a calibrated special case of it: exactly
 // there (the richer law's nonlinear parameters on its grid: from each such start it cannot end
 // worse than the special case) and switched on there. One effect against one effect, or a pair
-// against the pair with the same other member; none otherwise (asymmetric friction: its nestings
-// tie its parameters together, Fc_pos = Fc_neg = Fc or Fc ± offset, rather than fix a value).
+// against the pair with the same other member; none otherwise (asymmetric friction from the pair
+// Coulomb + offset: Fc_pos = Fc + offset, Fc_neg = Fc - offset, which is not one value).
 std::vector<Eigen::VectorXd> starts_from_special_case(const Context& c, const Candidate& richer, const Trial& special) {
   std::vector<Eigen::VectorXd> starts;
   if (richer.parts.empty()) {

@@ -21,6 +21,10 @@ struct SpecialCase {
   /// the bounded-error interval of one of them excludes its value. A special case that also needs
   /// an equality between parameters (Fc_pos = Fc_neg) lists only the fixed values here.
   std::vector<std::pair<std::string, double>> fixed;
+  /// (richer law's role, special case's role): parameters that equal one of the special case's
+  /// there (asymmetric friction's Fc_pos = Fc_neg = Coulomb's Fc), so that the richer law can be
+  /// started exactly at the special case's optimum. Only where the special case is one effect.
+  std::vector<std::pair<std::string, std::string>> equal = {};
 };
 
 struct PhysicsEffect {
