@@ -53,7 +53,7 @@ void take_slots(const Screening& s, const std::vector<const ScreenedHypothesis*>
 // The shortlist: the best `k` by score (one delay per actuator), those consistent with the noise
 // bound, the best two by equation error, those calibrated from the file's values, the slots below,
 // and the special cases of every one of those (so that a richer law is always judged against the
-// law it contains, hypotheses.cpp's nested rule).
+// law it contains, judge_round.cpp's nested rule).
 std::vector<const ScreenedHypothesis*> shortlist(const Screening& s, int k, bool slots) {
   std::vector<const ScreenedHypothesis*> out;
   std::set<std::string> delay_seen;
@@ -149,9 +149,7 @@ bool same_hypothesis(const Candidate& a, const Candidate& b) {
 // starts and candidates, no rule.
 void screen_at_file_values(const Context& c, const HypothesisSearch& h, const std::vector<std::string>& chosen,
                            const std::vector<double>& bound, Round& r, Diagnosis& d) {
-  ModelFile at = h.current;
-  for (auto& q : at.parameters)
-    if (const auto* v = c.model.parameter(q.name); v && !q.fixed) q.value = v->value;
+  const ModelFile at = at_file_values(h.current, c.model);
   if (values_of(at) == values_of(h.current)) return;
   const DiagnosisOptions& opt = c.options;
   std::vector<Candidate> cands;

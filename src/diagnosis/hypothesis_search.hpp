@@ -60,6 +60,9 @@ struct Round {
 };
 
 // refine_trials.cpp
+// `m` with every parameter it leaves free at `file`'s value where the file declares it: the start
+// the nominal's own calibration had, before that calibration could absorb a missing effect.
+ModelFile at_file_values(ModelFile m, const ModelFile& file);
 std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypotheses, const Scales& known);
 Candidate best_delay(const Context& c, const ModelFile& current, const Candidate& chosen, const std::vector<double>& bound);
 

@@ -94,10 +94,7 @@ std::optional<Eigen::VectorXd> delay_from_file_start(const Candidate& cand, cons
   bool delay = false;
   for (const auto& part : parts_of(cand)) delay = delay || part.effect == "time_delay";
   if (!delay) return {};
-  ModelFile m = cand.model;
-  for (auto& q : m.parameters)
-    if (const auto* v = file.parameter(q.name); v && !q.fixed) q.value = v->value;
-  return values_of(m);
+  return values_of(at_file_values(cand.model, file));
 }
 
 // The round's trials `which` refined again from the starts `again` (a progress line says `why`

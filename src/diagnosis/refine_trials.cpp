@@ -48,13 +48,8 @@ Setup setup_of(const Context& c, const ToRefine& r, const Scales& known) {
   u.options.max_evaluations = 80 * static_cast<int>(u.free.size() + 1);
   u.from = r.starts;
   if (u.from.empty()) u.from.push_back(s.parameter_values());
-  if (cand.restart) {  // from the file's values: the calibrated nominal may be far off
-    Eigen::VectorXd p = s.parameter_values();
-    for (std::size_t i = 0; i < cand.model.parameters.size(); ++i)
-      if (const auto* orig = c.model.parameter(cand.model.parameters[i].name); orig && !cand.model.parameters[i].fixed)
-        p[static_cast<Eigen::Index>(i)] = orig->value;
-    u.from.push_back(p);
-  }
+  if (cand.restart)  // from the file's values: the calibrated nominal may be far off
+    u.from.push_back(values_of(at_file_values(cand.model, c.model)));
   u.ok = true;
   return u;
 }
@@ -124,6 +119,12 @@ Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& b
 }
 
 }  // namespace
+
+ModelFile at_file_values(ModelFile m, const ModelFile& file) {
+  for (auto& q : m.parameters)
+    if (const auto* v = file.parameter(q.name); v && !q.fixed) q.value = v->value;
+  return m;
+}
 
 // Output-error calibration of each hypothesis from each of its starts (the best kept), then its
 // cost with its own term switched off at the calibrated point. Every (hypothesis, start) pair is

@@ -5,7 +5,8 @@
 //   data_hypothesis.cpp       a finding about the data: the inputs' intersample behaviour
 //   locate.cpp             2. windows, operating regions, frequency band (varying_parameters.cpp:
 //                             which parameter would have to vary, and when)
-//   hypotheses.cpp         3. competing catalogue hypotheses, added greedily
+//   hypotheses.cpp         3. competing catalogue hypotheses, added greedily (its parts:
+//                             refine_trials, special_cases, refine_again, judge_round.cpp)
 //   augment.cpp            4. the augmented model, its fits and the new parameters' intervals
 //   report.cpp             5. JSON and text
 //   diagnosis.cpp          the pipeline and the verdict

@@ -24,8 +24,10 @@ TEST(RefineAgain, HypothesisThatEndedWorseThanTheModelItNestsIsRefinedFromThatMo
   const std::vector<Candidate> cs = generate_candidates(h.current, s.fast->simulate(values_of(h.current)), s.estimation);
   std::vector<ScreenedHypothesis> screened;
   for (const auto& c : cs)
-    if (c.parts.empty() && (c.effect == "coulomb_friction" || c.effect == "constant_offset") && screened.size() < 2)
-      screened.push_back({c});
+    if (c.parts.empty() && (c.effect == "coulomb_friction" || c.effect == "constant_offset") && screened.size() < 2) {
+      screened.emplace_back();
+      screened.back().candidate = c;
+    }
   ASSERT_EQ(screened.size(), 2u);
   Round r;
   r.cost_cur = evaluate(*s.fast, values_of(h.current)).cost;

@@ -43,7 +43,9 @@ TEST(RefineTrials, NoHypothesisEndsWorseThanItsBestStartAndItsOwnTermMatters) {
   const Simulator sim(coulomb->model, s.estimation, {s.options.screening_substeps});
   for (const auto& p : starts) {
     const CalibrationResult at = evaluate(sim, p);
-    if (at.ok) EXPECT_LE(t[0].cost, at.cost);
+    if (at.ok) {
+      EXPECT_LE(t[0].cost, at.cost);
+    }
   }
   // On a Coulomb plant, Coulomb's own term switched off at its optimum fits worse, on both records.
   EXPECT_GT(t[0].cost_neutral, t[0].cost);
@@ -66,6 +68,8 @@ TEST(RefineTrials, TwoThreadsGiveTheSerialResult) {
   for (std::size_t i = 0; i < serial.size(); ++i) {
     EXPECT_EQ(serial[i].ok, pooled[i].ok) << serial[i].cand.effect;
     EXPECT_EQ(serial[i].cost, pooled[i].cost) << serial[i].cand.effect;
-    if (serial[i].ok) EXPECT_EQ(values_of(serial[i].model), values_of(pooled[i].model)) << serial[i].cand.effect;
+    if (serial[i].ok) {
+      EXPECT_EQ(values_of(serial[i].model), values_of(pooled[i].model)) << serial[i].cand.effect;
+    }
   }
 }

@@ -68,8 +68,9 @@ TEST(SpecialCases, StribeckNestsCoulombAtItsOwnPlaceOnly) {
   EXPECT_FALSE(nests(*f.coulomb, *f.stribeck));  // not the other way round
   EXPECT_FALSE(nests(*f.coulomb, *f.coulomb));   // a law is not strictly richer than itself
   for (const auto& c : f.all)
-    if (c.parts.empty() && c.effect == "coulomb_friction" && c.equation != f.coulomb->equation)
+    if (c.parts.empty() && c.effect == "coulomb_friction" && c.equation != f.coulomb->equation) {
       EXPECT_FALSE(nests(*f.stribeck, c)) << "Coulomb in " << c.equation;
+    }
 }
 
 // At each start built from the special case's optimum, the richer law *is* the special case: the
@@ -83,8 +84,9 @@ TEST(SpecialCases, RicherLawStartedAtItsSpecialCasesOptimumSimulatesAsTheSpecial
   for (const auto& p : starts) EXPECT_LE(f.mismatch(*f.stribeck, p, special), 1e-9);
   // A law of another place has no start at this special case.
   for (const auto& c : f.all)
-    if (c.parts.empty() && c.effect == "stribeck_friction" && c.equation != f.coulomb->equation)
+    if (c.parts.empty() && c.effect == "stribeck_friction" && c.equation != f.coulomb->equation) {
       EXPECT_TRUE(starts_at_special_case(c, special).empty()) << c.equation;
+    }
 }
 
 // Asymmetric friction reaches Coulomb by an equality (Fc_pos = Fc_neg = Fc, the catalogue's

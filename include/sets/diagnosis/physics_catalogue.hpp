@@ -36,7 +36,7 @@ struct PhysicsEffect {
   std::string signature;   // what the residual looks like when it is missing
   /// What this effect becomes with some of its parameters fixed. The diagnosis names the richer
   /// law only when it passes the acceptance rules against each of them and the data exclude them
-  /// (hypotheses.cpp, docs/methods/diagnosis.md "Nested hypotheses").
+  /// (judge_round.cpp, docs/methods/diagnosis.md "Nested hypotheses").
   std::vector<SpecialCase> special_cases;
 };
 
