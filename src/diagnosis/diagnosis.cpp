@@ -106,7 +106,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   const bool chosen_at_calibrated = options.screening_substeps <= 0 && !nominal.file_values_simulated;
   if (chosen_at_calibrated)
     sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps);
-  else if (!evaluate(fast, nominal.calibration.parameters).ok)
+  else if (blows_up_at(fast, nominal.calibration.parameters, model))
     sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps, sub + 1);
   std::unique_ptr<Simulator> other_step;
   if (sub != opt.screening_substeps) {

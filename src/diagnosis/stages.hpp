@@ -101,6 +101,10 @@ std::string equally_good_text(const EquallyGood& e);
 /// fits at the parameters `p` agree with the final substeps within 0.2 points; else final_substeps.
 int screening_substeps(const ModelFile& model, const Recording& estimation, const Simulator& exact, const Eigen::VectorXd& p,
                        int final_substeps, int at_least = 1);
+/// Whether the screening step `fast` (chosen at the file's values) blows up at the calibrated
+/// values `p`: their simulation is not finite, or fits worse than the file's values at the same
+/// step, although the calibration at the final step fits better than the file's values.
+bool blows_up_at(const Simulator& fast, const Eigen::VectorXd& p, const ModelFile& file);
 
 struct NominalFit {
   std::vector<int> free;               // the nominal's free parameters
