@@ -212,24 +212,39 @@ TEST(CalibrateNominal, EndsWithNumericalErrorWhenNoStartCanBeSimulated) {
   }
 }
 
+namespace {
+
+// x' = a (u - x), x measured.
+ModelFile first_order_lag(double a) {
+  return parse_model(R"json({"time": "t", "inputs": {"u": "u"}, "parameters": {"a": )json" + std::to_string(a) +
+                     R"json(}, "states": {"x": 0.0}, "derivatives": {"x": "a*(u - x)"}, "outputs": {"x": "x_meas"}})json");
+}
+
+// 2000 samples at 0.1 s of u = sin(w t), and x_meas = u.
+Recording slow_sine_record(double w) {
+  const int n = 2000;
+  std::vector<double> t(n), u(n);
+  for (int k = 0; k < n; ++k) {
+    t[static_cast<std::size_t>(k)] = 0.1 * k;
+    u[static_cast<std::size_t>(k)] = std::sin(w * 0.1 * k);
+  }
+  Recording r;
+  r.add("t", t);
+  r.add("u", u);
+  r.add("x_meas", u);
+  return r;
+}
+
+}  // namespace
+
 TEST(CalibrateNominal, ScreeningStepIsTheCoarsestThatRK4ResolvesNotTheNextRungOfALadder) {
   // x' = a (u - x) with a = 150 /s, sampled at 0.1 s: h a = 15 / substeps, and RK4 is stable on
   // the real axis for h a < 2.79, so 1 - 5 substeps blow up and 6 (h a = 2.5) is the coarsest
   // that simulates; the slow sine input is followed to far better than 0.2 points there. (Random
   // plants 5 002 090 and 5 001 980 went that way at their calibrated values, a mass near 0: finite
   // from 8 and 9 substeps, and a ladder {1, 2, 5} screened every hypothesis at the final 10.)
-  const ModelFile model = parse_model(R"json({"time": "t", "inputs": {"u": "u"}, "parameters": {"a": 150.0},
-    "states": {"x": 0.0}, "derivatives": {"x": "a*(u - x)"}, "outputs": {"x": "x_meas"}})json");
-  const int n = 2000;
-  std::vector<double> t(n), u(n);
-  for (int k = 0; k < n; ++k) {
-    t[static_cast<std::size_t>(k)] = 0.1 * k;
-    u[static_cast<std::size_t>(k)] = std::sin(0.05 * 0.1 * k);
-  }
-  Recording r;
-  r.add("t", t);
-  r.add("u", u);
-  r.add("x_meas", u);
+  const ModelFile model = first_order_lag(150.0);
+  const Recording r = slow_sine_record(0.05);
   const int final_substeps = 10;
   const Simulator exact(model, r, {final_substeps});
   const Eigen::VectorXd p = exact.parameter_values();
@@ -282,18 +297,8 @@ TEST(CalibrateNominal, AScreeningStepThatGrowsTheCalibratedModeWithoutOverflowIs
   // x' = a (u - x) sampled at 0.1 s, one RK4 substep: the file's a = 15 (h a = 1.5) is resolved;
   // a calibrated a = 28.5 (h a = 2.85, just outside RK4's interval 2.79) grows by |R(h a)| = 1.10
   // per sample, to about 1e84 over the record: finite, so "ok", yet no model to search around.
-  const ModelFile model = parse_model(R"json({"time": "t", "inputs": {"u": "u"}, "parameters": {"a": 15.0},
-    "states": {"x": 0.0}, "derivatives": {"x": "a*(u - x)"}, "outputs": {"x": "x_meas"}})json");
-  const int n = 2000;
-  std::vector<double> t(n), u(n);
-  for (int k = 0; k < n; ++k) {
-    t[static_cast<std::size_t>(k)] = 0.1 * k;
-    u[static_cast<std::size_t>(k)] = std::sin(0.5 * 0.1 * k);
-  }
-  Recording r;
-  r.add("t", t);
-  r.add("u", u);
-  r.add("x_meas", u);
+  const ModelFile model = first_order_lag(15.0);
+  const Recording r = slow_sine_record(0.5);
   const Simulator fast(model, r, {1});
   Eigen::VectorXd calibrated = fast.parameter_values();
   calibrated[0] = 28.5;

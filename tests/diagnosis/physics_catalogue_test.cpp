@@ -34,6 +34,14 @@ std::string names_of(const Diagnosis& d) {
   return s.empty() ? "none: " + d.verdict : s;
 }
 
+// The plant diagnosed for its first effect only, on one thread.
+Diagnosis first_effect_of(const SyntheticPlant& p) {
+  DiagnosisOptions o;
+  o.threads = 1;
+  o.max_effects = 1;
+  return diagnose(p.nominal, p.estimation, &p.validation, o);
+}
+
 }  // namespace
 
 TEST(PhysicsCatalogue, PlacementFollowsStructureNotNames) {
@@ -165,10 +173,7 @@ TEST(PhysicsCatalogue, OutputSaturationAtOneEndIsNamedWithItsOneLimit) {
   const SyntheticPlant p = random_plant(5001299);
   ASSERT_EQ(p.effects.size(), 1u);
   ASSERT_EQ(p.effects[0].name, "output_saturation");
-  DiagnosisOptions o;
-  o.threads = 1;
-  o.max_effects = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = first_effect_of(p);
   ASSERT_FALSE(d.effects.empty()) << d.verdict;
   EXPECT_EQ(d.effects.front().name, "output_saturation") << names_of(d);
   ASSERT_EQ(d.effects.front().parameters.size(), 1u);
@@ -203,10 +208,7 @@ TEST(PhysicsCatalogue, InputSaturationCuttingOnlyTheDrivesPeaksIsNamed) {
   double finest = 0;
   for (const auto& g : c->grid) finest = std::max(finest, g.front() / amax);
   EXPECT_NEAR(finest, 0.98, 1e-9);
-  DiagnosisOptions o;
-  o.threads = 1;
-  o.max_effects = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = first_effect_of(p);
   ASSERT_FALSE(d.effects.empty()) << d.verdict;
   EXPECT_EQ(d.effects.front().name, "input_saturation") << names_of(d);
   EXPECT_EQ(d.effects.front().equation, "e");
