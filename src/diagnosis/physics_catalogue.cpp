@@ -443,6 +443,28 @@ Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
   return c;
 }
 
+namespace {
+
+// The delay `d`'s term as it stands in `model`: prev(a, n), or prev(s, n) where a later effect at
+// the same actuator put its own signal s in a's place (a sampled signal `d`'s model did not have).
+std::string delayed_term(const ModelFile& model, const Candidate& d) {
+  auto in_model = [&](const std::string& t) {
+    for (const auto* texts : {&model.derivatives, &model.signals})
+      for (const auto& x : *texts)
+        if (x.second.find(t) != std::string::npos) return true;
+    return false;
+  };
+  if (in_model(d.term)) return d.term;
+  for (const auto& s : model.sampled) {
+    const bool old = std::any_of(d.model.sampled.begin(), d.model.sampled.end(), [&](const auto& o) { return o.first == s.first; });
+    const std::string t = "prev(" + s.first + ", " + std::to_string(d.delay_samples) + ")";
+    if (!old && in_model(t)) return t;
+  }
+  return d.term;
+}
+
+}  // namespace
+
 Candidate combine_candidates(const Candidate& first, const Candidate& second) {
   Candidate c = second;
   c.effect = first.effect + "+" + second.effect;
@@ -459,6 +481,10 @@ Candidate combine_candidates(const Candidate& first, const Candidate& second) {
   c.delay_samples = std::max(first.delay_samples, second.delay_samples);
   c.restart = first.restart || second.restart;
   Candidate a = first, b = second;
+  // A second effect at the delayed actuator rewires the delayed signal (prev(u, n) becomes
+  // prev(u_sat, n)): the delay's term follows, or switching the delay off would find nothing and
+  // read its own share of the pair as 0.
+  if (first.effect == "time_delay") a.term = delayed_term(c.model, first);
   a.model = ModelFile();
   b.model = ModelFile();
   c.parts = {a, b};

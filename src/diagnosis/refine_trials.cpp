@@ -54,13 +54,16 @@ Setup setup_of(const Context& c, const ToRefine& r, const Scales& known) {
   return u;
 }
 
-// `m` with the delay `part` taken out: its term read back as the undelayed signal
-// (delay_candidate writes prev(a, n) in place of a in the derivatives and signals).
+// `m` with the delay `part` taken out: its term prev(s, n) read back as the undelayed signal s
+// (delay_candidate writes prev(a, n) in place of a; in a pair, s may be a later effect's signal
+// at a, combine_candidates).
 ModelFile without_delay(ModelFile m, const Candidate& part) {
+  const std::string& term = part.term;
+  const std::string undelayed = term.substr(5, term.rfind(", ") - 5);  // "prev(" s ", " n ")"
   for (auto* texts : {&m.derivatives, &m.signals})
     for (auto& t : *texts)
-      for (std::size_t at = t.second.find(part.term); at != std::string::npos; at = t.second.find(part.term, at))
-        t.second.replace(at, part.term.size(), part.equation);
+      for (std::size_t at = t.second.find(term); at != std::string::npos; at = t.second.find(term, at))
+        t.second.replace(at, term.size(), undelayed);
   return m;
 }
 

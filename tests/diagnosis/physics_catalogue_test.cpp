@@ -11,6 +11,7 @@
 #include "sets/diagnosis/diagnosis.hpp"
 #include "sets/diagnosis/physics_catalogue.hpp"
 #include "sets/examples/random_plants.hpp"
+#include "sets/examples/synthetic_plants.hpp"
 #include "support/plant_fixtures.hpp"
 
 using namespace sets;
@@ -212,4 +213,28 @@ TEST(PhysicsCatalogue, InputSaturationCuttingOnlyTheDrivesPeaksIsNamed) {
   ASSERT_FALSE(d.effects.empty()) << d.verdict;
   EXPECT_EQ(d.effects.front().name, "input_saturation") << names_of(d);
   EXPECT_EQ(d.effects.front().equation, "e");
+}
+
+// A pair's delay keeps a term that is in the pair's model, also when the second effect sits at
+// the delayed input and rewires it (prev(u, n) -> prev(u_sat, n)).
+TEST(PhysicsCatalogue, APairsDelayTermFollowsALawAtTheSameInput) {
+  const SyntheticPlant p = synthetic_plant("time_delay");
+  const std::vector<Candidate> cs = candidates_of(p.nominal, p.estimation);
+  const Candidate* delay = nullptr;
+  for (const auto& c : cs)
+    if (c.effect == "time_delay") delay = &c;
+  ASSERT_NE(delay, nullptr);
+  int laws = 0;
+  for (const auto& second : candidates_of(delay->model, p.estimation)) {
+    if (second.equation != delay->equation || second.effect == "time_delay") continue;
+    const Candidate pair = combine_candidates(*delay, second);
+    ASSERT_EQ(pair.parts.size(), 2u);
+    const std::string& term = pair.parts[0].term;
+    bool found = false;
+    for (const auto& d : pair.model.derivatives) found = found || d.second.find(term) != std::string::npos;
+    for (const auto& d : pair.model.signals) found = found || d.second.find(term) != std::string::npos;
+    EXPECT_TRUE(found) << second.effect << ": " << term;
+    ++laws;
+  }
+  EXPECT_GE(laws, 2);  // input saturation, dead zone, backlash
 }

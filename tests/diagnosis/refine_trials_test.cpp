@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -72,4 +73,30 @@ TEST(RefineTrials, TwoThreadsGiveTheSerialResult) {
       EXPECT_EQ(values_of(serial[i].model), values_of(pooled[i].model)) << serial[i].cand.effect;
     }
   }
+}
+
+// A delay paired with a second effect at the same input (an input saturation written on the
+// delayed model rewires prev(u, n) into prev(u_sat, n)): switching the delay off alone must still
+// take it out. Before, the delay's term was looked for as written before the rewiring, nothing
+// was switched off and the delay's own share of the pair read 0 (the pair failed own_term).
+TEST(RefineTrials, DelaySwitchedOffInAPairWithALawAtTheSameInput) {
+  test::StageRun s(synthetic_plant("time_delay"), true, 800);
+  const std::vector<Candidate> cs = generate_candidates(s.model, s.fast->simulate(values_of(s.model)), s.estimation);
+  const Candidate* delay = nullptr;
+  for (const auto& c : cs)
+    if (c.effect == "time_delay" && (!delay || std::abs(c.delay_samples - 12) < std::abs(delay->delay_samples - 12))) delay = &c;
+  ASSERT_NE(delay, nullptr);
+  const Simulator on_delay(delay->model, s.estimation, {s.options.screening_substeps});
+  const std::vector<Candidate> second = generate_candidates(delay->model, on_delay.simulate(values_of(delay->model)), s.estimation);
+  const Candidate* saturation = nullptr;
+  for (const auto& c : second)
+    if (c.effect == "input_saturation" && c.equation == delay->equation) saturation = &c;
+  ASSERT_NE(saturation, nullptr);
+  const Candidate pair = combine_candidates(*delay, *saturation);
+  const std::vector<Trial> t = refine(s.c(), {{&pair, {values_of(pair.model)}}}, {});
+  ASSERT_EQ(t.size(), 1u);
+  ASSERT_TRUE(t[0].ok);
+  ASSERT_EQ(t[0].part_neutral.size(), 2u);
+  // On a plant with a 12-sample delay, the pair without its delay fits worse than the pair.
+  EXPECT_GT(t[0].part_neutral[0], 1.01 * t[0].cost);
 }
