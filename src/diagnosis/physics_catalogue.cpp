@@ -429,21 +429,8 @@ void sensor_candidates(const Context& k, std::size_t j) {
   }
 }
 
-}  // namespace
-
-Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
-  Candidate c;
-  c.effect = "time_delay";
-  c.equation = a;
-  c.term = "prev(" + a + ", " + std::to_string(n) + ")";
-  c.model = model;
-  c.delay_samples = n;
-  for (auto& d : c.model.derivatives) d.second = replace_symbol(d.second, a, c.term);
-  for (auto& d : c.model.signals) d.second = replace_symbol(d.second, a, c.term);
-  return c;
-}
-
-namespace {
+// How a delay of n samples writes the signal s into a model (without_delay reads it back).
+std::string delayed(const std::string& s, int n) { return "prev(" + s + ", " + std::to_string(n) + ")"; }
 
 // The delay `d`'s term as it stands in `model`: prev(a, n), or prev(s, n) where a later effect at
 // the same actuator put its own signal s in a's place (a sampled signal `d`'s model did not have).
@@ -457,13 +444,25 @@ std::string delayed_term(const ModelFile& model, const Candidate& d) {
   if (in_model(d.term)) return d.term;
   for (const auto& s : model.sampled) {
     const bool old = std::any_of(d.model.sampled.begin(), d.model.sampled.end(), [&](const auto& o) { return o.first == s.first; });
-    const std::string t = "prev(" + s.first + ", " + std::to_string(d.delay_samples) + ")";
+    const std::string t = delayed(s.first, d.delay_samples);
     if (!old && in_model(t)) return t;
   }
   return d.term;
 }
 
 }  // namespace
+
+Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
+  Candidate c;
+  c.effect = "time_delay";
+  c.equation = a;
+  c.term = delayed(a, n);
+  c.model = model;
+  c.delay_samples = n;
+  for (auto& d : c.model.derivatives) d.second = replace_symbol(d.second, a, c.term);
+  for (auto& d : c.model.signals) d.second = replace_symbol(d.second, a, c.term);
+  return c;
+}
 
 Candidate combine_candidates(const Candidate& first, const Candidate& second) {
   Candidate c = second;
