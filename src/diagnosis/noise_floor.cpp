@@ -41,6 +41,16 @@ std::vector<OutputNoise> read_noise(const Context& c, const std::vector<std::str
   return out;
 }
 
+// The misfit (cost_of units) noise of level sigma per output gives on a record's outputs Y.
+double noise_cost_on(const Eigen::MatrixXd& Y, const std::vector<double>& sigma) {
+  double cost = 0;
+  for (Eigen::Index j = 0; j < Y.cols() && j < static_cast<Eigen::Index>(sigma.size()); ++j) {
+    const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
+    if (den > 0) cost += sigma[static_cast<std::size_t>(j)] * sigma[static_cast<std::size_t>(j)] * static_cast<double>(Y.rows()) / den;
+  }
+  return cost;
+}
+
 }  // namespace
 
 NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d) {
@@ -48,14 +58,12 @@ NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d
   const Eigen::MatrixXd& Y = c.exact.measured();
   d.noise = read_noise(c, d.outputs, nominal.simulation.outputs, nominal.validation_outputs, "nominal");
   NoiseFloor f;
-  const Eigen::Index N = Y.rows();
-  for (Eigen::Index j = 0; j < Y.cols(); ++j) {
-    const double s = d.noise[static_cast<std::size_t>(j)].estimate.sigma;
-    f.sigma.push_back(s);
-    f.pole.push_back(d.noise[static_cast<std::size_t>(j)].estimate.ar_pole);
-    const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
-    if (den > 0) f.cost += s * s * static_cast<double>(N) / den;
+  for (const auto& n : d.noise) {
+    f.sigma.push_back(n.estimate.sigma);
+    f.pole.push_back(n.estimate.ar_pole);
   }
+  f.cost = noise_cost_on(Y, f.sigma);
+  if (c.exact_validation) f.cost_validation = noise_cost_on(c.exact_validation->measured(), f.sigma);
   return f;
 }
 

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -124,6 +125,7 @@ struct NoiseFloor {
   std::vector<double> sigma;  // per output (estimates: sets/data/noise_level.hpp)
   std::vector<double> pole;   // the noise's AR(1) pole per output when its colour was verified, else 0
   double cost = 0;            // the misfit (cost_of units) the noise alone gives
+  double cost_validation = std::numeric_limits<double>::quiet_NaN();  // the same on the validation record (NaN: none)
   std::string note;           // how sigma was estimated
 };
 /// The noise level of every output from the calibrated nominal's residual (and the inputs'

@@ -69,6 +69,21 @@ TEST(Acceptance, GainWithinTheNoiseFails) {
   only_fails(e, "beyond_noise");
 }
 
+// Where the validation record's noise misfit is given (the nested rule), a gain beyond that noise
+// on validation counts as beyond the noise; one within it does not, and without it only the
+// estimation record counts.
+TEST(Acceptance, GainBeyondTheNoiseOnValidationCountsWhereItsNoiseIsGiven) {
+  HypothesisEvidence e = good();
+  e.noise_cost = 0.6;               // 0.5 removed on estimation: within its noise
+  e.noise_cost_validation = 0.2;    // 0.4 removed on validation: twice its noise
+  EXPECT_TRUE(passes(check_rules(e)));
+  EXPECT_NEAR(rule(check_rules(e), "beyond_noise").value, 2.0, 1e-12);
+  e.noise_cost_validation = 0.5;    // within the validation noise too
+  only_fails(e, "beyond_noise");
+  e.noise_cost_validation = std::nan("");
+  only_fails(e, "beyond_noise");
+}
+
 TEST(Acceptance, EffectWhoseOwnTermDoesNothingFails) {
   HypothesisEvidence e = good();
   e.cost_neutral = 0.52;  // switching it off costs only 4 %: a better optimum of the old parameters

@@ -19,6 +19,9 @@ struct HypothesisEvidence {
   double cost_null_validation = std::numeric_limits<double>::quiet_NaN();  // NaN: no validation record
   double cost_validation = std::numeric_limits<double>::quiet_NaN();
   double noise_cost = 0;    // the misfit the measurement noise alone gives on the estimation record
+  /// The same on the validation record; given (not NaN) only where a gain beyond the noise on
+  /// either record counts: the nested rule, a richer law against its special case (judge_round.cpp).
+  double noise_cost_validation = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct AcceptanceRules {
