@@ -41,14 +41,15 @@ std::vector<OutputNoise> read_noise(const Context& c, const std::vector<std::str
   return out;
 }
 
-// The misfit (cost_of units) noise of level sigma per output gives on a record's outputs Y.
-double noise_cost_on(const Eigen::MatrixXd& Y, const std::vector<double>& sigma) {
-  double cost = 0;
+// The misfit (cost_of units) noise of level sigma gives on each output of a record's outputs Y (0
+// where an output is constant).
+std::vector<double> noise_costs_on(const Eigen::MatrixXd& Y, const std::vector<double>& sigma) {
+  std::vector<double> costs;
   for (Eigen::Index j = 0; j < Y.cols() && j < static_cast<Eigen::Index>(sigma.size()); ++j) {
-    const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
-    if (den > 0) cost += sigma[static_cast<std::size_t>(j)] * sigma[static_cast<std::size_t>(j)] * static_cast<double>(Y.rows()) / den;
+    const double s = sigma[static_cast<std::size_t>(j)], den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
+    costs.push_back(den > 0 ? s * s * static_cast<double>(Y.rows()) / den : 0.0);
   }
-  return cost;
+  return costs;
 }
 
 }  // namespace
@@ -62,8 +63,12 @@ NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d
     f.sigma.push_back(n.estimate.sigma);
     f.pole.push_back(n.estimate.ar_pole);
   }
-  f.cost = noise_cost_on(Y, f.sigma);
-  if (c.exact_validation) f.cost_validation = noise_cost_on(c.exact_validation->measured(), f.sigma);
+  f.costs = noise_costs_on(Y, f.sigma);
+  for (double x : f.costs) f.cost += x;
+  if (c.exact_validation) {
+    f.cost_validation = 0;
+    for (double x : noise_costs_on(c.exact_validation->measured(), f.sigma)) f.cost_validation += x;
+  }
   return f;
 }
 
