@@ -6,13 +6,33 @@
 
 namespace sets {
 
+namespace {
+
+// Misfit removed over the noise's own misfit. Each output's share is counted in units of its own
+// noise, (removed_j / noise_j) averaged over the m outputs, which is the rule on outputs whitened
+// by their noise: removed / noise summed over outputs divided by spread alone lets an output whose
+// noise is large for its spread drown the evidence of a quiet one (random plant 5 003 724: a dead
+// zone removes 31 noise levels' misfit from the measured drive, 0.1 from the noisy position, and
+// failed at 0.57). For one output, or outputs with equal noise for their spread, it is removed / noise.
+double beyond_noise(const HypothesisEvidence& e) {
+  const std::size_t m = e.noise_cost_outputs.size();
+  bool per_output = m > 0 && e.cost_null_outputs.size() == m && e.cost_outputs.size() == m;
+  for (std::size_t j = 0; per_output && j < m; ++j) per_output = e.noise_cost_outputs[j] > 0;
+  if (!per_output) return e.noise_cost > 0 ? (e.cost_null - e.cost) / e.noise_cost : (e.cost_null > e.cost ? 1e300 : 0.0);
+  double sum = 0;
+  for (std::size_t j = 0; j < m; ++j) sum += (e.cost_null_outputs[j] - e.cost_outputs[j]) / e.noise_cost_outputs[j];
+  return sum / static_cast<double>(m);
+}
+
+}  // namespace
+
 std::vector<RuleCheck> check_rules(const HypothesisEvidence& e, const AcceptanceRules& r) {
   std::vector<RuleCheck> out;
   auto share = [](double before, double after) { return before > 0 ? (before - after) / before : 0.0; };
   out.push_back({"estimation_gain", "removes at least this share of the squared misfit on the estimation record",
                  share(e.cost_null, e.cost), r.min_gain, true, false});
-  out.push_back({"beyond_noise", "removes more squared misfit than the measurement noise alone contains (multiple)",
-                 e.noise_cost > 0 ? (e.cost_null - e.cost) / e.noise_cost : (e.cost_null > e.cost ? 1e300 : 0.0),
+  out.push_back({"beyond_noise", "removes more squared misfit than the measurement noise alone contains (multiple; each output in units of its noise)",
+                 beyond_noise(e),
                  r.noise_multiple, true, false});
   const bool neutral = std::isfinite(e.cost_neutral);
   out.push_back({"own_term", "switching the effect off at the calibrated point costs at least this share",

@@ -196,6 +196,7 @@ void lower_baseline(const Context& c, HypothesisSearch& h, Round& r) {
     if (t.ok && t.cand.parts.empty() && std::isfinite(t.cost_neutral) && t.cost_neutral < r.cost_cur &&
         (!c.validation || t.cost_neutral_val < 1e299)) {
       r.cost_cur = t.cost_neutral;
+      r.costs_cur = t.costs_neutral;
       r.cost_cur_val = t.cost_neutral_val;
       for (auto& q : h.current.parameters)
         if (const auto* nq = t.neutral_model.parameter(q.name)) q.value = nq->value;
@@ -225,6 +226,7 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   d.hypotheses_refined += static_cast<int>(r.list.size());
   if (r.trials.front().ok) {
     r.cost_cur = r.trials.front().cost;
+    r.costs_cur = r.trials.front().costs;
     r.cost_cur_val = r.trials.front().cost_val;
     h.current = r.trials.front().model;
   }

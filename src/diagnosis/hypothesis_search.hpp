@@ -25,6 +25,7 @@ struct Trial {
   ModelFile model;  // calibrated
   double cost = 1e300, cost_val = kNaN;
   double cost_neutral = kNaN, cost_neutral_val = kNaN;
+  std::vector<double> costs, costs_neutral;  // cost and cost_neutral per output (estimation)
   ModelFile neutral_model;  // the calibrated model with the effect switched off
   std::vector<double> part_neutral;  // two effects at once: the cost with each one switched off
   bool ok = false;
@@ -52,6 +53,7 @@ struct Round {
   std::vector<const ScreenedHypothesis*> list;  // the shortlist, refined
   std::vector<Trial> trials;                    // [0]: the null hypothesis; [i]: list[i - 1]
   double cost_cur = 1e300, cost_cur_val = kNaN;  // the baseline every hypothesis must beat
+  std::vector<double> costs_cur;                 // its cost per output (estimation)
   std::vector<std::size_t> ok;                   // trials that pass every rule
   std::map<std::size_t, std::string> beats;      // a richer law kept: the special cases it beat
   std::deque<ScreenedHypothesis> built;          // hypotheses the round built itself (list points here)

@@ -22,6 +22,9 @@ HypothesisEvidence evidence_of(const Round& r, const NoiseFloor& noise, const Tr
   e.cost_null_validation = r.cost_cur_val;
   e.cost_validation = t.cost_val;
   e.noise_cost = noise.cost;
+  e.cost_null_outputs = r.costs_cur;
+  e.cost_outputs = t.costs;
+  e.noise_cost_outputs = noise.costs;
   return e;
 }
 
@@ -33,6 +36,7 @@ HypothesisEvidence evidence_of(const Round& r, const NoiseFloor& noise, const Tr
 HypothesisEvidence against(const Round& r, const NoiseFloor& noise, const Trial& richer, const Trial& special) {
   HypothesisEvidence e = evidence_of(r, noise, richer);
   e.cost_null = special.cost;
+  e.cost_null_outputs = special.costs;
   e.cost_null_validation = special.cost_val;
   e.cost_neutral = kNaN;
   return e;

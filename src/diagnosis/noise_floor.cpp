@@ -54,7 +54,8 @@ NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d
     f.sigma.push_back(s);
     f.pole.push_back(d.noise[static_cast<std::size_t>(j)].estimate.ar_pole);
     const double den = (Y.col(j).array() - Y.col(j).mean()).matrix().squaredNorm();
-    if (den > 0) f.cost += s * s * static_cast<double>(N) / den;
+    f.costs.push_back(den > 0 ? s * s * static_cast<double>(N) / den : 0.0);
+    f.cost += f.costs.back();
   }
   return f;
 }

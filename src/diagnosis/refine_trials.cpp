@@ -77,6 +77,7 @@ Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& b
     Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
     t.ok = true;
     t.cost = best.cost;
+    t.costs = output_costs(best.fit);
     t.model = cand.model;
     store_values(t.model, best.parameters);
     t.cost_val = validation_cost(c, t.model);
@@ -102,6 +103,7 @@ Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& b
         t.neutral_model = m;
         const auto rn = cost_of(m);
         t.cost_neutral = rn.ok ? rn.cost : 1e300;
+        if (rn.ok) t.costs_neutral = output_costs(rn.fit);
         if (rn.ok) t.cost_neutral_val = validation_cost(c, m);
       }
     } else {

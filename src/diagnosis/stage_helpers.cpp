@@ -18,6 +18,12 @@ double cost_of(const std::vector<double>& fit) {
   return c;
 }
 
+std::vector<double> output_costs(const std::vector<double>& fit) {
+  std::vector<double> c;
+  for (double f : fit) c.push_back((1 - f / 100) * (1 - f / 100));
+  return c;
+}
+
 Eigen::VectorXd values_of(const ModelFile& m) {
   Eigen::VectorXd p(static_cast<Eigen::Index>(m.parameters.size()));
   for (std::size_t i = 0; i < m.parameters.size(); ++i) p[static_cast<Eigen::Index>(i)] = m.parameters[i].value;

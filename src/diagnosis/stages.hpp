@@ -44,6 +44,8 @@ struct Context {
 // ---- small helpers shared by the stages
 /// Sum over outputs of (1 - fit/100)^2: the squared misfit the rules compare.
 double cost_of(const std::vector<double>& fit);
+/// cost_of's terms, one per output.
+std::vector<double> output_costs(const std::vector<double>& fit);
 Eigen::VectorXd values_of(const ModelFile& m);
 void store_values(ModelFile& m, const Eigen::VectorXd& p);
 /// Typical size of each free parameter: |value|, or a known scale by name, or 1.
@@ -124,6 +126,7 @@ struct NoiseFloor {
   std::vector<double> sigma;  // per output (estimates: sets/data/noise_level.hpp)
   std::vector<double> pole;   // the noise's AR(1) pole per output when its colour was verified, else 0
   double cost = 0;            // the misfit (cost_of units) the noise alone gives
+  std::vector<double> costs;  // the same per output (0 where the output is constant)
   std::string note;           // how sigma was estimated
 };
 /// The noise level of every output from the calibrated nominal's residual (and the inputs'
