@@ -469,6 +469,31 @@ Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
   return c;
 }
 
+Candidate with_delay_samples(const Candidate& c, int n) {
+  Candidate moved = c;
+  Candidate* d = c.parts.empty() ? &moved : nullptr;
+  for (auto& part : moved.parts)
+    if (part.effect == "time_delay") d = &part;
+  if (!d || d->effect != "time_delay" || d->delay_samples == n) return c;
+  // The delay's term as the model holds it (prev(s, n0), s the actuator or a later effect's signal
+  // in its place: delayed_term), and as the pair's own term spells it (prev(a, n0)).
+  const std::string held = d->term, plain = delayed(d->equation, d->delay_samples);
+  auto rewrite = [n](std::string& text, const std::string& from) {
+    const std::string to = delayed(from.substr(5, from.rfind(", ") - 5), n);
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+      text.replace(at, from.size(), to);
+  };
+  for (auto* texts : {&moved.model.derivatives, &moved.model.signals, &moved.model.sampled})
+    for (auto& t : *texts) rewrite(t.second, held);
+  rewrite(moved.term, held);
+  rewrite(moved.term, plain);
+  if (d != &moved) rewrite(d->term, held);
+  d->delay_samples = n;
+  moved.delay_samples = n;
+  for (const auto& part : moved.parts) moved.delay_samples = std::max(moved.delay_samples, part.delay_samples);
+  return moved;
+}
+
 Candidate combine_candidates(const Candidate& first, const Candidate& second) {
   Candidate c = second;
   c.effect = first.effect + "+" + second.effect;

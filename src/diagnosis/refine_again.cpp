@@ -336,29 +336,71 @@ void refine_richer_below_special_cases(const Context& c, const HypothesisSearch&
   if (!again.empty()) refine_again(c, h, which, again, "refining again from a special case's optimum that fits better", r);
 }
 
+namespace {
+
+// The pair `t` (a delay and another effect, at its optimum) with its delay at the whole number of
+// samples between the grid's neighbours that fits best there (one simulation each); its own number
+// when that fits best, or when the pair has no delay.
+int best_pair_delay(const Context& c, const Trial& t) {
+  Candidate at_optimum = t.cand;
+  at_optimum.model = t.model;
+  int best = t.cand.delay_samples;
+  double best_cost = kNaN;
+  for (const Candidate& part : t.cand.parts) {
+    if (part.effect != "time_delay") continue;
+    for (int n : delays_around(part.delay_samples, c.exact.samples())) {
+      try {
+        const ModelFile m = with_delay_samples(at_optimum, n).model;
+        const CalibrationResult r = evaluate(Simulator(m, c.estimation, {c.options.screening_substeps}), values_of(m));
+        if (r.ok && !(r.cost >= best_cost)) best = n, best_cost = r.cost;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 // A delay competes at its best whole number of samples, as every other law competes at its
 // calibrated optimum: the screening grid (1, 2, 3, 4, 6, 8, 11, ...) is coarse, and beside a delay
 // one grid step off another law fits the step's error (5 001 140: a delay of 5 samples screened at
 // 4 or 6, an offset beside it, and the pair was named). Each one-effect delay of the round is moved
 // to the best whole number between its grid neighbours (best_delay) and calibrated there, from its
-// own optimum and from the current model; kept when it fits better.
+// own optimum and from the current model; kept when it fits better. A pair's delay likewise
+// (best_pair_delay: its numbers tried at the pair's optimum), calibrated from that optimum and from
+// the pair's screening start: where the round refines no delay alone, the pair's delay otherwise
+// stays a grid step off (development plant 5 003 764: a delay of 39 samples beside an output
+// saturation, refined at 32 in every pair; at 38 the pair with the output saturation removes
+// 95 % of the misfit instead of 88 %, the pair with an offset 98 % instead of 90 %).
 void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std::vector<double>& bound, Round& r) {
   std::vector<std::size_t> which;
   std::vector<Candidate> better;
+  std::vector<Eigen::VectorXd> from_optimum;
   for (std::size_t i = 1; i < r.trials.size(); ++i) {
     const Trial& t = r.trials[i];
-    if (!t.ok || !t.cand.parts.empty() || t.cand.effect != "time_delay") continue;
-    Candidate b = best_delay(c, h.current, t.cand, bound);
-    if (b.delay_samples == t.cand.delay_samples) continue;
+    if (!t.ok) continue;
+    Candidate b;
+    if (t.cand.parts.empty() && t.cand.effect == "time_delay") {
+      b = best_delay(c, h.current, t.cand, bound);
+      if (b.delay_samples == t.cand.delay_samples) continue;
+      from_optimum.push_back(values_of(mapped_by_role(b, t.cand, t.model)));
+    } else if (!t.cand.parts.empty()) {
+      const int n = best_pair_delay(c, t);
+      if (n == t.cand.delay_samples) continue;
+      Candidate at_optimum = t.cand;
+      at_optimum.model = t.model;
+      b = with_delay_samples(t.cand, n);
+      from_optimum.push_back(values_of(with_delay_samples(at_optimum, n).model));
+    } else {
+      continue;
+    }
     which.push_back(i);
     better.push_back(std::move(b));
   }
   if (better.empty()) return;
   std::vector<ToRefine> to_refine;
-  for (std::size_t k = 0; k < better.size(); ++k) {
-    const Trial& t = r.trials[which[k]];
-    to_refine.push_back({&better[k], {values_of(mapped_by_role(better[k], t.cand, t.model)), values_of(better[k].model)}});
-  }
+  for (std::size_t k = 0; k < better.size(); ++k) to_refine.push_back({&better[k], {from_optimum[k], values_of(better[k].model)}});
   const std::vector<Trial> moved = refine(c, to_refine, h.known_scales);
   for (std::size_t k = 0; k < which.size(); ++k) {
     Trial& t = r.trials[which[k]];

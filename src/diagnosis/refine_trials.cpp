@@ -183,17 +183,21 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
   return trials;
 }
 
-// The delay grid is coarse: every whole number of samples between the screened one's neighbours
-// is screened again by simulation (cheap), the best is refined.
-Candidate best_delay(const Context& c, const ModelFile& current, const Candidate& chosen, const std::vector<double>& bound) {
+std::vector<int> delays_around(int n0, int samples) {
   static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
-  const int n0 = chosen.delay_samples;
   const auto it = std::find(grid.begin(), grid.end(), n0);
   const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
   const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 + 8 : *(it + 1) - 1;
+  std::vector<int> around;
+  for (int n = lo; n <= hi && n < samples / 10; ++n) around.push_back(n);
+  return around;
+}
+
+// The delay grid is coarse: every whole number of samples between the screened one's neighbours
+// is screened again by simulation (cheap), the best is refined.
+Candidate best_delay(const Context& c, const ModelFile& current, const Candidate& chosen, const std::vector<double>& bound) {
   std::vector<Candidate> around;
-  for (int n = lo; n <= hi; ++n)
-    if (n < c.exact.samples() / 10) around.push_back(delay_candidate(current, chosen.equation, n));
+  for (int n : delays_around(chosen.delay_samples, c.exact.samples())) around.push_back(delay_candidate(current, chosen.equation, n));
   if (around.size() < 2) return chosen;
   ScreeningOptions so;
   so.substeps = c.options.screening_substeps;

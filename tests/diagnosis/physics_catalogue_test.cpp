@@ -238,3 +238,37 @@ TEST(PhysicsCatalogue, APairsDelayTermFollowsALawAtTheSameInput) {
   }
   EXPECT_GE(laws, 2);  // input saturation, dead zone, backlash
 }
+
+// A pair's delay moved to another number of samples is the pair built at that number: the same
+// model text and counts, whether the second effect sits at the delayed input (and rewires it) or
+// elsewhere; a candidate without a delay is left as it is.
+TEST(PhysicsCatalogue, APairsDelayMovedIsThePairBuiltAtThatNumber) {
+  const SyntheticPlant p = synthetic_plant("time_delay");
+  const std::vector<Candidate> cs = candidates_of(p.nominal, p.estimation);
+  const Candidate* delay = nullptr;
+  for (const auto& c : cs)
+    if (c.effect == "time_delay" && c.delay_samples == 3) delay = &c;
+  ASSERT_NE(delay, nullptr);
+  const Candidate other = delay_candidate(p.nominal, delay->equation, 5);
+  const std::vector<Candidate> on_other = candidates_of(other.model, p.estimation);
+  EXPECT_EQ(with_delay_samples(*delay, 5).model.derivatives, other.model.derivatives);
+  int pairs = 0;
+  for (const auto& second : candidates_of(delay->model, p.estimation)) {
+    if (second.effect == "time_delay") continue;
+    const Candidate* twin = nullptr;
+    for (const auto& s : on_other)
+      if (s.effect == second.effect && s.equation == second.equation && s.term == second.term) twin = &s;
+    if (!twin) continue;
+    const Candidate moved = with_delay_samples(combine_candidates(*delay, second), 5);
+    const Candidate built = combine_candidates(other, *twin);
+    EXPECT_EQ(moved.model.derivatives, built.model.derivatives) << second.effect;
+    EXPECT_EQ(moved.model.signals, built.model.signals) << second.effect;
+    EXPECT_EQ(moved.model.sampled, built.model.sampled) << second.effect;
+    EXPECT_EQ(moved.parts[0].term, built.parts[0].term) << second.effect;
+    EXPECT_EQ(moved.parts[0].delay_samples, 5) << second.effect;
+    EXPECT_EQ(moved.delay_samples, 5) << second.effect;
+    EXPECT_EQ(with_delay_samples(second, 5).model.derivatives, second.model.derivatives);
+    ++pairs;
+  }
+  EXPECT_GE(pairs, 10);  // laws at the delayed input (which rewire it) and elsewhere
+}

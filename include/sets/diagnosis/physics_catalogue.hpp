@@ -76,6 +76,10 @@ Candidate combine_candidates(const Candidate& first, const Candidate& second);
 /// The time_delay candidate for actuator `a` delayed by n samples.
 Candidate delay_candidate(const ModelFile& model, const std::string& actuator, int n);
 
+/// `c` (a delay, or a pair with a delay member) with that delay moved to n samples, in its model,
+/// terms and counts; `c` itself when it has no delay.
+Candidate with_delay_samples(const Candidate& c, int n);
+
 /// A product p*x (or x*p) of a free parameter and a state in the model's equations.
 struct LinearTerm {
   std::string parameter, state;
