@@ -1,6 +1,7 @@
 #include "sets/diagnosis/physics_catalogue.hpp"
 
 #include <boost/algorithm/string/classification.hpp>
+#include <boost/algorithm/string/replace.hpp>
 #include <boost/algorithm/string/trim.hpp>
 
 #include <algorithm>
@@ -434,7 +435,7 @@ void sensor_candidates(const Context& k, std::size_t j) {
   }
 }
 
-// How a delay of n samples writes the signal s into a model (without_delay reads it back).
+// How a delay of n samples writes the signal s into a model (delayed_signal reads it back).
 std::string delayed(const std::string& s, int n) { return "prev(" + s + ", " + std::to_string(n) + ")"; }
 
 // The delay `d`'s term as it stands in `model`: prev(a, n), or prev(s, n) where a later effect at
@@ -469,6 +470,8 @@ Candidate delay_candidate(const ModelFile& model, const std::string& a, int n) {
   return c;
 }
 
+std::string delayed_signal(const std::string& term) { return term.substr(5, term.rfind(", ") - 5); }
+
 Candidate with_delay_samples(const Candidate& c, int n) {
   Candidate moved = c;
   Candidate* d = c.parts.empty() ? &moved : nullptr;
@@ -479,9 +482,7 @@ Candidate with_delay_samples(const Candidate& c, int n) {
   // in its place: delayed_term), and as the pair's own term spells it (prev(a, n0)).
   const std::string held = d->term, plain = delayed(d->equation, d->delay_samples);
   auto rewrite = [n](std::string& text, const std::string& from) {
-    const std::string to = delayed(from.substr(5, from.rfind(", ") - 5), n);
-    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
-      text.replace(at, from.size(), to);
+    boost::algorithm::replace_all(text, from, delayed(delayed_signal(from), n));
   };
   for (auto* texts : {&moved.model.derivatives, &moved.model.signals, &moved.model.sampled})
     for (auto& t : *texts) rewrite(t.second, held);

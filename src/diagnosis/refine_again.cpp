@@ -338,15 +338,13 @@ void refine_richer_below_special_cases(const Context& c, const HypothesisSearch&
 
 namespace {
 
-// The pair `t` (a delay and another effect, at its optimum) with its delay at the whole number of
-// samples between the grid's neighbours that fits best there (one simulation each); its own number
-// when that fits best, or when the pair has no delay.
-int best_pair_delay(const Context& c, const Trial& t) {
-  Candidate at_optimum = t.cand;
-  at_optimum.model = t.model;
-  int best = t.cand.delay_samples;
+// The pair `at_optimum` (a delay and another effect, its model at the pair's optimum) with its delay
+// at the whole number of samples between the grid's neighbours that fits best there (one simulation
+// each); its own number when that fits best, or when the pair has no delay.
+int best_pair_delay(const Context& c, const Candidate& at_optimum) {
+  int best = at_optimum.delay_samples;
   double best_cost = kNaN;
-  for (const Candidate& part : t.cand.parts) {
+  for (const Candidate& part : at_optimum.parts) {
     if (part.effect != "time_delay") continue;
     for (int n : delays_around(part.delay_samples, c.exact.samples())) {
       try {
@@ -386,10 +384,10 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
       if (b.delay_samples == t.cand.delay_samples) continue;
       from_optimum.push_back(values_of(mapped_by_role(b, t.cand, t.model)));
     } else if (!t.cand.parts.empty()) {
-      const int n = best_pair_delay(c, t);
-      if (n == t.cand.delay_samples) continue;
       Candidate at_optimum = t.cand;
       at_optimum.model = t.model;
+      const int n = best_pair_delay(c, at_optimum);
+      if (n == t.cand.delay_samples) continue;
       b = with_delay_samples(t.cand, n);
       from_optimum.push_back(values_of(with_delay_samples(at_optimum, n).model));
     } else {

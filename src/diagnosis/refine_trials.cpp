@@ -2,6 +2,8 @@
 // its starts (the worker pool runs every hypothesis-start pair), the best start kept, its cost
 // with its own term switched off measured at the optimum; and the delay's whole number of samples.
 
+#include <boost/algorithm/string/replace.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -58,12 +60,9 @@ Setup setup_of(const Context& c, const ToRefine& r, const Scales& known) {
 // (delay_candidate writes prev(a, n) in place of a; in a pair, s may be a later effect's signal
 // at a, combine_candidates).
 ModelFile without_delay(ModelFile m, const Candidate& part) {
-  const std::string& term = part.term;
-  const std::string undelayed = term.substr(5, term.rfind(", ") - 5);  // "prev(" s ", " n ")"
+  const std::string undelayed = delayed_signal(part.term);
   for (auto* texts : {&m.derivatives, &m.signals})
-    for (auto& t : *texts)
-      for (std::size_t at = t.second.find(term); at != std::string::npos; at = t.second.find(term, at))
-        t.second.replace(at, term.size(), undelayed);
+    for (auto& t : *texts) boost::algorithm::replace_all(t.second, part.term, undelayed);
   return m;
 }
 

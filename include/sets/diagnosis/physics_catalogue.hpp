@@ -76,6 +76,10 @@ Candidate combine_candidates(const Candidate& first, const Candidate& second);
 /// The time_delay candidate for actuator `a` delayed by n samples.
 Candidate delay_candidate(const ModelFile& model, const std::string& actuator, int n);
 
+/// The signal s of a delay's term prev(s, n) as the catalogue writes it (delay_candidate, or a
+/// pair's delay rewired to a later effect's signal).
+std::string delayed_signal(const std::string& term);
+
 /// `c` (a delay, or a pair with a delay member) with that delay moved to n samples, in its model,
 /// terms and counts; `c` itself when it has no delay.
 Candidate with_delay_samples(const Candidate& c, int n);
