@@ -12,15 +12,15 @@
 
 namespace sets::diagnosis_stage {
 
-double cost_of(const std::vector<double>& fit) {
-  double c = 0;
-  for (double f : fit) c += (1 - f / 100) * (1 - f / 100);
-  return c;
-}
-
 std::vector<double> output_costs(const std::vector<double>& fit) {
   std::vector<double> c;
   for (double f : fit) c.push_back((1 - f / 100) * (1 - f / 100));
+  return c;
+}
+
+double cost_of(const std::vector<double>& fit) {
+  double c = 0;
+  for (double x : output_costs(fit)) c += x;
   return c;
 }
 
