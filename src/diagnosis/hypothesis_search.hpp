@@ -66,8 +66,8 @@ struct Round {
 // the nominal's own calibration had, before that calibration could absorb a missing effect.
 ModelFile at_file_values(ModelFile m, const ModelFile& file);
 std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypotheses, const Scales& known);
-// Every whole number of samples between the delay grid's neighbours of n0 (the grid is coarse),
-// below a tenth of the record's `samples`.
+// Every whole number of samples between the delay grid's neighbours of n0 (the grid is coarse;
+// n0 need not be on it), below a tenth of the record's `samples`.
 std::vector<int> delays_around(int n0, int samples);
 Candidate best_delay(const Context& c, const ModelFile& current, const Candidate& chosen, const std::vector<double>& bound);
 

@@ -184,9 +184,10 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
 
 std::vector<int> delays_around(int n0, int samples) {
   static const std::vector<int> grid = {1, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64};
-  const auto it = std::find(grid.begin(), grid.end(), n0);
-  const int lo = it == grid.begin() ? 1 : *(it - 1) + 1;
-  const int hi = (it == grid.end() || it + 1 == grid.end()) ? n0 + 8 : *(it + 1) - 1;
+  const auto above = std::upper_bound(grid.begin(), grid.end(), n0);
+  const auto below = std::lower_bound(grid.begin(), grid.end(), n0);
+  const int lo = below == grid.begin() ? 1 : *(below - 1) + 1;
+  const int hi = above == grid.end() ? n0 + 8 : *above - 1;
   std::vector<int> around;
   for (int n = lo; n <= hi && n < samples / 10; ++n) around.push_back(n);
   return around;
