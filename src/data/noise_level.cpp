@@ -10,6 +10,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "sets/data/bursts.hpp"
 #include "sets/data/spectrum.hpp"
 
 namespace sets {
@@ -44,23 +45,6 @@ double median(std::vector<double> v) {
   if (n % 2) return v[h];
   const double hi = v[h];
   return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<long>(h)));
-}
-
-// RMS after discarding |x| > 3.5 rms, iterated (the spikes that steps make in differences); unlike
-// a median it works on lattice-valued data. 0.996: RMS of a Gaussian truncated at 3.5 sigma.
-double clipped_rms(const VectorXd& x) {
-  double s = std::sqrt(x.squaredNorm() / static_cast<double>(std::max<Index>(1, x.size())));
-  for (int it = 0; it < 5; ++it) {
-    double sum = 0;
-    long kept = 0;
-    for (Index i = 0; i < x.size(); ++i)
-      if (std::abs(x[i]) <= 3.5 * s) sum += x[i] * x[i], ++kept;
-    if (kept < 10) break;
-    const double next = std::sqrt(sum / static_cast<double>(kept)) / 0.9960;
-    if (next == s) break;
-    s = next;
-  }
-  return s;
 }
 
 // ---- spectrum of the noise

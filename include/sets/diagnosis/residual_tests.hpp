@@ -13,6 +13,13 @@
 // below that band (where missing physics and the signal live) is not in a, so it stays in the
 // whitened residual; the falsification test against the bound is unchanged. Without a verified
 // colour (a = 0) a coloured residual is not white and "nothing is missing" is not said.
+// A third test must agree too, bursts (sets/data/bursts.hpp): the residual's first three
+// differences hold no more energy in bursts (beyond 3.5 of their clipped RMS) than in their
+// Gaussian body (RMS / clipped RMS <= sqrt(2)). Noise of any colour, and quantisation, has none;
+// switching model error (hysteresis, backlash, a missed step) puts its fast part there, and its
+// power spread over every frequency can be read as noise by the estimate (random plant 5 004 294:
+// the noise read 7.5x too high, whitened by the pole that model error bent, "nothing missing").
+// Unlike the other two it does not depend on the noise level: an over-read floor cannot hide it.
 // Reported besides (not decisive): independence, the residual's correlation with every
 // input and simulated signal of the model (and their absolute values) at lags 0, +-1, +-2, ...
 // N/20 against Bartlett's variance for two autocorrelated series, (1/N) sum_k rho_rr(k) rho_ss(k).
@@ -39,7 +46,10 @@ struct ResidualTests {
   std::string worst_signal;   // where the largest correlation was found, e.g. "|v| at lag 4"
   std::vector<double> bound;  // delta_j per output
   std::vector<double> whitened_by;  // the AR(1) pole the residual was whitened by, per output (0: not)
-  bool within_noise() const { return !falsified && white; }
+  bool bursty = false;        // some output's residual has bursts in its fast part (sets::burst_ratio)
+  double worst_burst_ratio = 1;
+  int worst_burst_output = 0;
+  bool within_noise() const { return !falsified && white && !bursty; }
   bool any_whitened() const {  // was the whiteness test run on a whitened residual for some output?
     return std::any_of(whitened_by.begin(), whitened_by.end(), [](double a) { return a != 0; });
   }
@@ -51,6 +61,10 @@ struct ResidualTests {
 /// AR(1) pole per output (NoiseLevelEstimate::ar_pole; empty or 0: white noise assumed).
 ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& parameters, const SimulationResult& simulated,
                             const std::vector<double>& sigma, const std::vector<double>& noise_pole = {});
+
+/// RMS / clipped RMS of a residual's differences above which its fast part is not noise: the
+/// bursts hold as much energy as the Gaussian body (noise gives 1 to about 1/sqrt(2N)).
+constexpr double kBurstRatioLimit = 1.4142135623730951;
 
 /// The bound factor c_N for N samples.
 double noise_bound_factor(Eigen::Index samples);
