@@ -13,8 +13,6 @@ using namespace sets;
 
 namespace {
 
-const double kLimit = std::sqrt(2.0);  // the bursts as strong as the body (the diagnosis' limit)
-
 // AR(1) noise of pole a and unit marginal variance.
 Eigen::VectorXd ar_noise(int N, double a, unsigned seed) {
   std::mt19937 rng(seed);
@@ -62,9 +60,9 @@ TEST(Bursts, ASwitchingMismatchInNoiseHasThem) {
   // of 15 noise levels RMS, as on random plant 5 004 294): a few samples per reversal carry more
   // energy than the noise in every difference.
   const Eigen::VectorXd noise = ar_noise(3000, 0.0, 13);
-  EXPECT_GT(burst_ratio(noise + switching(3000, 30.0, 150, 2.0, 14)), kLimit);
+  EXPECT_GT(burst_ratio(noise + switching(3000, 30.0, 150, 2.0, 14)), kBurstRatioLimit);
   // 3x the noise in height: the reversals are inside the noise's body, too weak to be told.
-  EXPECT_LT(burst_ratio(noise + switching(3000, 3.0, 150, 2.0, 14)), kLimit);
+  EXPECT_LT(burst_ratio(noise + switching(3000, 3.0, 150, 2.0, 14)), kBurstRatioLimit);
   // The strong mismatch smoothed (a lag of 60 samples): it moves slowly, no bursts.
   EXPECT_LT(burst_ratio(noise + switching(3000, 30.0, 150, 60.0, 14)), 1.1);
 }

@@ -11,6 +11,10 @@
 
 namespace sets {
 
+/// RMS / clipped RMS of a signal's differences above which its fast part is not noise: the
+/// bursts hold as much energy as the Gaussian body (noise gives 1 to about 1/sqrt(2N)).
+constexpr double kBurstRatioLimit = 1.4142135623730951;
+
 /// RMS after discarding |x| > 3.5 rms, iterated (the spikes that steps make in differences); unlike
 /// a median it works on lattice-valued data. 0.996: RMS of a Gaussian truncated at 3.5 sigma, so
 /// that Gaussian data give their RMS.

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "sets/data/bursts.hpp"
 #include "sets/data/simulation.hpp"
 
 namespace sets {
@@ -61,10 +62,6 @@ struct ResidualTests {
 /// AR(1) pole per output (NoiseLevelEstimate::ar_pole; empty or 0: white noise assumed).
 ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::VectorXd>& parameters, const SimulationResult& simulated,
                             const std::vector<double>& sigma, const std::vector<double>& noise_pole = {});
-
-/// RMS / clipped RMS of a residual's differences above which its fast part is not noise: the
-/// bursts hold as much energy as the Gaussian body (noise gives 1 to about 1/sqrt(2N)).
-constexpr double kBurstRatioLimit = 1.4142135623730951;
 
 /// The bound factor c_N for N samples.
 double noise_bound_factor(Eigen::Index samples);
