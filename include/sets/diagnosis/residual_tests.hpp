@@ -1,5 +1,5 @@
 #pragma once
-// Is a calibrated model within the noise? Two tests that must agree before the diagnosis says
+// Is a calibrated model within the noise? Three tests that must agree before the diagnosis says
 // "no physics is missing":
 //  * falsification: the output error linearised at the calibrated parameters, strips
 //    |r_t - J_t dtheta| <= delta_j with delta_j = c_N sigma_j (c_N = 1.2 sqrt(2 ln 2N): the largest
