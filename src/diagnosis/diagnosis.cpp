@@ -56,8 +56,11 @@ void conclude(Diagnosis& d) {
   }
   d.unexplained = true;
   d.where = where_of(d);
-  const std::string what = d.nominal_tests.falsified ? "The mismatch is real but no catalogue effect explains it ("
-                           : d.nominal_tests.any_whitened() ? "The residual is inside the noise bound but not the coloured noise read from it (a "
+  const ResidualTests& t = d.nominal_tests;
+  const std::string what = t.falsified ? "The mismatch is real but no catalogue effect explains it ("
+                           : t.white && t.bursty ? "The residual is inside the noise bound but its fast part has bursts, which noise "
+                                                   "does not (a switching mismatch that no catalogue effect explains; "
+                           : t.any_whitened() ? "The residual is inside the noise bound but not the coloured noise read from it (a "
                                         "mismatch that no catalogue effect explains, or noise of another colour; "
                                       : "The residual is inside the noise bound but not white (coloured measurement noise, or a "
                                         "mismatch that no catalogue effect explains; ";

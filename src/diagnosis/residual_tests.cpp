@@ -8,6 +8,7 @@
 #include <complex>
 #include <sstream>
 
+#include "sets/data/bursts.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
 
 namespace sets {
@@ -26,6 +27,8 @@ std::string ResidualTests::summary() const {
   for (std::size_t j = 0; whitened && j < whitened_by.size(); ++j) o << (j ? ", " : "a = ") << whitened_by[j];
   o << (whitened ? ") " : "") << (white ? "white" : "not white") << " (autocorrelation " << worst_autocorrelation_z
     << " standard deviations at lag " << worst_lag << ", threshold " << white_threshold << ")";
+  o << "; " << (bursty ? "bursts" : "no bursts") << " in the residual's fast part (RMS / clipped RMS of its differences " << worst_burst_ratio
+    << (bound.size() > 1 ? " on output " + std::to_string(worst_burst_output + 1) : std::string()) << ", limit " << kBurstRatioLimit << ")";
   o << "; largest correlation with the model's signals " << worst_z << " standard deviations (threshold " << z_threshold << ")";
   if (!worst_signal.empty()) o << ", " << worst_signal;
   return o.str();
@@ -127,6 +130,11 @@ ResidualTests test_residual(const Simulator& sim, const Eigen::Ref<const Eigen::
     }
     t.white = t.worst_autocorrelation_z <= t.white_threshold;
   }
+  for (Eigen::Index j = 0; j < ny; ++j) {
+    const double b = burst_ratio(R.col(j));
+    if (b > t.worst_burst_ratio) t.worst_burst_ratio = b, t.worst_burst_output = static_cast<int>(j);
+  }
+  t.bursty = t.worst_burst_ratio > kBurstRatioLimit;
   const double tests = static_cast<double>(std::max<std::size_t>(1, signals.size() * lags.size() * static_cast<std::size_t>(ny)));
   t.z_threshold = boost::math::quantile(boost::math::complement(boost::math::normal(), 0.01 / (2 * tests)));
   for (Eigen::Index j = 0; j < ny; ++j) {

@@ -228,3 +228,27 @@ TEST(NoiseLevel, EmpsPositionIsQuantisedAtTheEncoderStep) {
   EXPECT_GT(e.sigma, 14.4e-9 / 2) << e.reason;
   EXPECT_LT(e.sigma, 14.4e-9 * 2) << e.reason;
 }
+
+TEST(NoiseLevel, ASwitchingModelErrorIsNotReadAsColouredNoise) {
+  // What the model misses switches between two levels (a relay, a hysteresis' or backlash's
+  // reversal seen at coarse sampling) at random, on average every 20 samples: a random telegraph
+  // signal, whose spectrum is exactly that of AR(1) noise of pole 1 - 2/20 = 0.9. Beside white
+  // noise of a tenth of its height the residual's spectrum is AR(1)-shaped from 1/32 to 1/2, and
+  // was read as that noise (random plant 5 004 294, 7.5x). Its differences hold the reversals in a
+  // few samples each, bursts the clipped differences drop: the noise is read from them.
+  const int N = 4096;
+  const VectorXd u = multisine(N, 0.001, 0.03, 1, 21);
+  const VectorXd clean = resonance(u, 0.01, 0.3);
+  const VectorXd noise = white(N, 1e-3 * rms(clean), 22);
+  std::mt19937 rng(23);
+  std::bernoulli_distribution reverse(1.0 / 20);
+  VectorXd missed(N);
+  double level = 10 * rms(noise);
+  for (int k = 0; k < N; ++k) missed[k] = level = reverse(rng) ? -level : level;
+  for (double scale : {1e-6, 1.0}) {
+    const NoiseLevelEstimate e = estimate_noise(scale * (clean + noise + missed), scale * clean, u);
+    EXPECT_NE(e.method, NoiseMethod::residual_coloured) << e.reason;
+    EXPECT_NEAR(e.sigma / (scale * rms(noise)), 1.0, 0.2) << e.reason;
+    EXPECT_EQ(e.ar_pole, 0.0);
+  }
+}
