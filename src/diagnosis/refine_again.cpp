@@ -413,11 +413,11 @@ std::vector<std::size_t> apply_moves(const Context& c, const HypothesisSearch& h
 // (best_delay_at_optimum) and calibrated there, from that optimum and from its screening start;
 // kept when it fits better. A delay alone is also tried at the number the screening at the current
 // model ranks first (best_delay). Alone and in a pair alike: were only the pair's delay moved, the
-// pair would be judged against a delay alone a grid step off, and its partner named for fitting
-// the step (development 5 004 216, a delay of 5 samples: alone at a grid number 1.0 % of the
-// misfit, with a viscous friction at 5 samples 0.2 %, and the friction was named; 5 004 170 and
-// 222 likewise with an offset). Where the round refines no delay alone, a pair's delay otherwise
-// stays a grid step off (development plant 5 003 764: a delay of 39 samples beside an output
+// pair would be judged against a delay alone a number or more off, or stuck in the current model's
+// basin, and its partner named for fitting the difference (development 5 004 216, a delay of 5
+// samples: alone 1.0 % of the misfit, with a viscous friction 0.2 %, the noise's; the friction was
+// named. 5 004 170 and 222 likewise with an offset). Where the round refines no delay alone, a
+// pair's delay otherwise stays a grid step off (development plant 5 003 764: a delay of 39 samples beside an output
 // saturation, refined at 32 in every pair; at 38 the pair with the output saturation removes
 // 95 % of the misfit instead of 88 %, the pair with an offset 98 % instead of 90 %).
 void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std::vector<double>& bound, Round& r) {
@@ -454,8 +454,8 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
         continue;
       }
       for (int step : {-1, 1})
-        if (t.cand.delay_samples + step >= 1 && tried[i].insert(t.cand.delay_samples + step).second)
-          moves.push_back(move_to(c, i, t, t.cand.delay_samples + step));
+        if (const int m = t.cand.delay_samples + step; m >= 1 && m < c.exact.samples() / 10 && tried[i].insert(m).second)
+          moves.push_back(move_to(c, i, t, m));
     }
     walking = apply_moves(c, h, moves, r);
   }
