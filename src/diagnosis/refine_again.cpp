@@ -340,10 +340,12 @@ void refine_richer_below_special_cases(const Context& c, const HypothesisSearch&
 
 namespace {
 
-// The hypothesis `at_optimum` (a delay alone, or a pair with one; its model at its optimum) with its
-// delay at the whole number of samples between the grid's neighbours that fits best there (one
-// simulation each); its own number when that fits best, or when it has no delay.
-int best_delay_at_optimum(const Context& c, const Candidate& at_optimum) {
+// The trial `t` (a delay alone, or a pair with one) with its delay at the whole number of samples
+// between the grid's neighbours that fits best at its optimum (one simulation each); its own number
+// when that fits best, or when it has no delay.
+int best_delay_at_optimum(const Context& c, const Trial& t) {
+  Candidate at_optimum = t.cand;
+  at_optimum.model = t.model;
   int best = at_optimum.delay_samples;
   double best_cost = kNaN;
   const std::vector<Candidate> parts = parts_of(at_optimum);
@@ -427,12 +429,10 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
     const Trial& t = r.trials[i];
     const bool alone = t.cand.parts.empty() && t.cand.effect == "time_delay";
     if (!t.ok || (!alone && t.cand.parts.empty())) continue;
-    Candidate at_optimum = t.cand;
-    at_optimum.model = t.model;
-    const int n = best_delay_at_optimum(c, at_optimum);
-    tried[i] = {t.cand.delay_samples, n};
+    const int n = best_delay_at_optimum(c, t);
     if (alone || n != t.cand.delay_samples) moves.push_back(move_to(c, i, t, n));
     if (!alone) continue;
+    tried[i] = {t.cand.delay_samples, n};
     const int screened = best_delay(c, h.current, t.cand, bound).delay_samples;  // at the current model
     if (tried[i].insert(screened).second) moves.push_back(move_to(c, i, t, screened));
   }
@@ -446,9 +446,7 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
     for (std::size_t i : walking) {
       const Trial& t = r.trials[i];
       if (!t.cand.parts.empty()) continue;
-      Candidate at_optimum = t.cand;
-      at_optimum.model = t.model;
-      const int n = best_delay_at_optimum(c, at_optimum);
+      const int n = best_delay_at_optimum(c, t);
       if (tried[i].insert(n).second) {
         moves.push_back(move_to(c, i, t, n));
         continue;
