@@ -428,6 +428,16 @@ TEST(Hypotheses, MirrorSensorBehindANominalFarFromTheDataIsScreenedAtTheFilesVal
   }
 }
 
+// The calibration can absorb an effect into the nominal's parameters: on this position loop a
+// backlash of the drive (11 sigma) was taken up by a negative damping (c = -24 against the file's
+// 8.4); at that point the backlash screens at nothing, round 1 named nothing and the answer was
+// "unexplained" (main 9403f68). Screened at the file's values it explains 99 % of the misfit, so a
+// round 1 that names nothing is run again with those candidates. (Seed 5 004 395: held out in the
+// eighteenth session, development since, docs/reproduction/diagnosis.md.)
+TEST(Hypotheses, EffectTheCalibrationAbsorbedIsScreenedAtTheFilesValues) {
+  expect_named_alone_in_place(5004395, "backlash");
+}
+
 // A delay has no value that switches it off, so when its refinement ends worse than the current
 // model it is refined again from the file's values: the calibrated nominal has absorbed the missing
 // delay into its other parameters, and on this motor (a delay of the drive and a weak quadratic
