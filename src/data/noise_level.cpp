@@ -58,8 +58,8 @@ double median(std::vector<double> v) {
 // match the shape found above the gap. The noise variance is extrapolated under what
 // was left out: c / (2 (1 - a^2)). The density is largest at the lowest frequencies (a >= 0), so
 // the octave that ends the band must not lie below the shape in `upper`, a density the noise's
-// cannot exceed (the raw residual's): there the noise would hold more than the residual does,
-// and the shape above it is model error's, not the noise's (`below`).
+// cannot exceed (the raw residual's), in any octave from there down: there the noise would hold
+// more than the residual does, and the shape above it is model error's, not the noise's (`below`).
 struct ArBand {
   double sigma = 0, a = 0, f_lo = 0.25;  // f_lo: lower edge of the lowest octave in the band
   int octaves = 1;                       // octaves in the band
@@ -102,6 +102,20 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P, const VectorXd& upper) {
     return n > 0 ? sum / static_cast<double>(n) : 1.0;
   };
   auto octave_ratio = [&](double lo, double a, double c) { return octave_ratio_of(P, lo, a, c); };
+  // Every octave of `upper` from lo down (those of >= 4 bins, at least two) below the shape: one
+  // octave of 4 Welch bins is only ~2 standard errors from 1/1.5 and white noise's own residual
+  // falls there by chance (random plants 900 009, 900 013, the truth's residual); two cannot.
+  auto below_to_the_end = [&](double lo, double a, double c) {
+    int octaves_below = 0;
+    for (double o = lo;; o /= 2) {
+      long bins = 0;
+      for (Index k = 0; k < nb; ++k) bins += in_octave(o, k) ? 1 : 0;
+      if (bins < 4) break;
+      if (octave_ratio_of(upper, o, a, c) >= 1 / accept) return false;
+      ++octaves_below;
+    }
+    return octaves_below >= 2;
+  };
   ArBand r;
   std::vector<char> band(static_cast<std::size_t>(nb));
   for (Index k = 0; k < nb; ++k) band[static_cast<std::size_t>(k)] = f[k] >= r.f_lo;
@@ -129,7 +143,7 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P, const VectorXd& upper) {
     }
     if (octaves.size() < 2) break;
     if (octave_ratio(nf, r.a, c) <= accept) {
-      r.below = octave_ratio_of(upper, nf, r.a, c) < 1 / accept;
+      r.below = below_to_the_end(nf, r.a, c);
       break;
     }
     ++r.skipped, after_gap = true;
