@@ -198,7 +198,7 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals, bool bursts 
     if (p.sigma < plateau) plateau = p.sigma, order = p.order;
   }
   const std::string held = bursts ? " (bursts in the fast part: no AR(1) shape believed)"
-                           : ar.below ? " (AR(1) shape held down to f = " + num(ar.f_lo, 3) + ", the residual below it further down: model error's shape, not the noise's)"
+                           : ar.below ? " (AR(1) shape held down to f = " + num(ar.f_lo, 3) + ", the residual below it further down: not the noise's shape)"
                            : ar.skipped == 0 ? " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")"
                                            : " (AR(1) shape held on " + std::to_string(ar.octaves) + " octaves down to f = " + num(ar.f_lo, 3) +
                                                  ", " + std::to_string(ar.skipped) + " left out between: fewer than " + std::to_string(colour_octaves) + ")";
