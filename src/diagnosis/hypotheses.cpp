@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "diagnosis/hypothesis_search.hpp"
@@ -242,8 +243,8 @@ bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise)
 
 }  // namespace
 
-HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
-  const DiagnosisOptions& opt = c.options;
+HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
+  const DiagnosisOptions& opt = context.options;
   HypothesisSearch h;
   h.current = d.nominal;
   std::vector<std::string> chosen;
@@ -254,8 +255,15 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
   }
   const AcceptanceRules rules = rules_of(opt);
   std::vector<double> bound;
-  for (double s : noise.sigma) bound.push_back(noise_bound_factor(c.exact.samples()) * s);
+  for (double s : noise.sigma) bound.push_back(noise_bound_factor(context.exact.samples()) * s);
+  // A law named at a finer step than the screening's (refine_at_the_step_laws_need) is in the
+  // current model from then on: the later rounds search around it at that step.
+  std::optional<DiagnosisOptions> finer_options;
+  std::optional<Simulator> finer_fast;
+  std::optional<Context> finer;
+  const Context* cc = &context;
   for (int round = 0; round < opt.max_effects; ++round) {
+    const Context& c = *cc;
     Round r;
     r.index = round;
     screen_round(c, h, chosen, bound, r, d);
@@ -264,14 +272,23 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
     refine_richer_pairs(c, h, rules.min_own_term, r, d);
     refine_richer_below_special_cases(c, h, r);
+    refine_at_the_step_laws_need(c, h, r);
     refine_delay_numbers(c, h, bound, r);
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
     if (r.ok.empty()) break;
     const auto [pick, best] = pick_sparsest(c, r);
     record_pick(c, r, pick, best, equally_good(r, noise, rules, pick), h, chosen, d);
+    if (const int step = r.trials[pick].substeps; step > c.options.screening_substeps) {
+      finer_options = c.options;
+      finer_options->screening_substeps = step;
+      finer_fast.emplace(context.model, context.estimation, SimulationOptions{step});
+      finer.emplace(Context{context.model, context.estimation, context.validation, *finer_options, context.exact, *finer_fast,
+                            context.exact_validation, context.say});
+      cc = &*finer;
+    }
     // Within the noise now? Then nothing more is missing.
-    if (stop_at_noise && round + 1 < opt.max_effects && within_noise(c, h.current, noise)) break;
+    if (stop_at_noise && round + 1 < opt.max_effects && within_noise(*cc, h.current, noise)) break;
   }
   return h;
 }
