@@ -256,8 +256,8 @@ HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nom
   const AcceptanceRules rules = rules_of(opt);
   std::vector<double> bound;
   for (double s : noise.sigma) bound.push_back(noise_bound_factor(context.exact.samples()) * s);
-  // A law named at a finer step than the screening's (refine_at_the_step_laws_need) is in the
-  // current model from then on: the later rounds search around it at that step.
+  // A law named at a finer step than the screening's (refine_at_the_step_laws_need) and switched on
+  // there is in the current model from then on: the later rounds search around it at that step.
   std::optional<DiagnosisOptions> finer_options;
   std::optional<Simulator> finer_fast;
   std::optional<Context> finer;
@@ -279,7 +279,7 @@ HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nom
     if (r.ok.empty()) break;
     const auto [pick, best] = pick_sparsest(c, r);
     record_pick(c, r, pick, best, equally_good(r, noise, rules, pick), h, chosen, d);
-    if (const int step = r.trials[pick].substeps; step > c.options.screening_substeps) {
+    if (const int step = step_after_pick(c, r.trials[pick]); step > c.options.screening_substeps) {
       finer_options = c.options;
       finer_options->screening_substeps = step;
       finer_fast.emplace(context.model, context.estimation, SimulationOptions{step});

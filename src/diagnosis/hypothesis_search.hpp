@@ -97,6 +97,7 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
 
 // refine_at_law_step.cpp
 void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, Round& r);
+int step_after_pick(const Context& c, const Trial& t);
 
 // judge_round.cpp
 void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& noise, const AcceptanceRules& rules, Round& r);

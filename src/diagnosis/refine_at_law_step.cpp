@@ -92,4 +92,13 @@ void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, R
   }
 }
 
+// The picked hypothesis `t` is the current model of the later rounds: they search around it at the
+// final step when it was refined there and the screening step is not exact at its optimum (a law
+// named on); else at the screening step (5 004 423, a Coulomb plant: Coulomb friction refined at the
+// final step beside a switched-on Stribeck law, exact at 1 substep at its own optimum).
+int step_after_pick(const Context& c, const Trial& t) {
+  if (t.substeps <= c.options.screening_substeps) return c.options.screening_substeps;
+  return step_needed(c, t.model, values_of(t.model)) > c.options.screening_substeps ? t.substeps : c.options.screening_substeps;
+}
+
 }  // namespace sets::diagnosis_stage
