@@ -286,6 +286,7 @@ HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nom
       finer.emplace(Context{context.model, context.estimation, context.validation, *finer_options, context.exact, *finer_fast,
                             context.exact_validation, context.say});
       cc = &*finer;
+      context.say("  the later rounds at " + std::to_string(step) + " RK4 substeps: the law named needs them at its optimum");
     }
     // Within the noise now? Then nothing more is missing.
     if (stop_at_noise && round + 1 < opt.max_effects && within_noise(*cc, h.current, noise)) break;
