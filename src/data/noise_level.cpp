@@ -56,14 +56,18 @@ double median(std::vector<double> v) {
 // octaves (a constrained), an octave above it by more than 1.5 is left out as theirs and the band
 // looks further down; one below it ends the band, and the one that rejoins it below a gap must
 // match the shape found above the gap. The noise variance is extrapolated under what
-// was left out: c / (2 (1 - a^2)).
+// was left out: c / (2 (1 - a^2)). The density is largest at the lowest frequencies (a >= 0), so
+// the octave that ends the band must not lie below the shape in `upper`, a density the noise's
+// cannot exceed (the raw residual's), in any octave from there down: there the noise would hold
+// more than the residual does, and the shape above it is model error's, not the noise's (`below`).
 struct ArBand {
   double sigma = 0, a = 0, f_lo = 0.25;  // f_lo: lower edge of the lowest octave in the band
   int octaves = 1;                       // octaves in the band
   int skipped = 0;                       // octaves above f_lo left out as signal or model error
+  bool below = false;                    // the band ended on an octave of `upper` below the shape
 };
 
-ArBand ar_band(const VectorXd& f, const VectorXd& P) {
+ArBand ar_band(const VectorXd& f, const VectorXd& P, const VectorXd& upper) {
   constexpr double a_max = 0.9, accept = 1.5;
   const Index nb = f.size();
   const VectorXd cw = (2 * M_PI * f).array().cos();
@@ -90,12 +94,27 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P) {
   };
   // Octave [lo, 2 lo) (the top one [1/4, 1/2] closed): its bins and its mean(P / S) under (a, c).
   auto in_octave = [&](double lo, Index k) { return f[k] >= lo && (lo >= 0.25 || f[k] < 2 * lo); };
-  auto octave_ratio = [&](double lo, double a, double c) {
+  auto octave_ratio_of = [&](const VectorXd& D, double lo, double a, double c) {
     double sum = 0;
     long n = 0;
     for (Index k = 0; k < nb; ++k)
-      if (in_octave(lo, k)) sum += P[k] * shape(a, k) / c, ++n;
+      if (in_octave(lo, k)) sum += D[k] * shape(a, k) / c, ++n;
     return n > 0 ? sum / static_cast<double>(n) : 1.0;
+  };
+  auto octave_ratio = [&](double lo, double a, double c) { return octave_ratio_of(P, lo, a, c); };
+  // Every octave of `upper` from lo down (those of >= 4 bins, at least two) below the shape: one
+  // octave of 4 Welch bins is only ~2 standard errors from 1/1.5 and white noise's own residual
+  // falls there by chance (random plants 900 009, 900 013, the truth's residual); two cannot.
+  auto below_to_the_end = [&](double lo, double a, double c) {
+    int octaves_below = 0;
+    for (double o = lo;; o /= 2) {
+      long bins = 0;
+      for (Index k = 0; k < nb; ++k) bins += in_octave(o, k) ? 1 : 0;
+      if (bins < 4) break;
+      if (octave_ratio_of(upper, o, a, c) >= 1 / accept) return false;
+      ++octaves_below;
+    }
+    return octaves_below >= 2;
   };
   ArBand r;
   std::vector<char> band(static_cast<std::size_t>(nb));
@@ -122,7 +141,11 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P) {
       band = grown, octaves.push_back(nf), r.f_lo = nf, r.a = a2, c = c2, after_gap = false;
       continue;
     }
-    if (octaves.size() < 2 || octave_ratio(nf, r.a, c) <= accept) break;
+    if (octaves.size() < 2) break;
+    if (octave_ratio(nf, r.a, c) <= accept) {
+      r.below = below_to_the_end(nf, r.a, c);
+      break;
+    }
     ++r.skipped, after_gap = true;
   }
   r.octaves = static_cast<int>(octaves.size());
@@ -152,10 +175,11 @@ struct SpectralReading {
 // believed and the clipped differences, which drop the bursts, can read the noise.
 SpectralReading from_spectrum(const std::vector<VectorXd>& signals, bool bursts = false) {
   WelchSpectrum s = welch_spectrum(signals.front());
+  const VectorXd first = s.density;  // what the noise's density cannot exceed (y, or the raw residual)
   for (std::size_t i = 1; i < signals.size(); ++i) s.density = s.density.cwiseMin(welch_spectrum(signals[i]).density);
   SpectralReading out;
-  const ArBand ar = ar_band(s.frequency, s.density);
-  if (ar.f_lo <= colour_gate && ar.octaves >= colour_octaves && !bursts) {
+  const ArBand ar = ar_band(s.frequency, s.density, first);
+  if (ar.f_lo <= colour_gate && ar.octaves >= colour_octaves && !bursts && !ar.below) {
     out.sigma = ar.sigma;
     out.ar_pole = ar.a;
     out.coloured = true;
@@ -173,7 +197,9 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals, bool bursts 
     const DifferencePlateau p = difference_plateau(x);
     if (p.sigma < plateau) plateau = p.sigma, order = p.order;
   }
-  const std::string held = bursts ? " (bursts in the fast part: no AR(1) shape believed)" : ar.skipped == 0 ? " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")"
+  const std::string held = bursts ? " (bursts in the fast part: no AR(1) shape believed)"
+                           : ar.below ? " (AR(1) shape held down to f = " + num(ar.f_lo, 3) + ", the residual below it further down: not the noise's shape)"
+                           : ar.skipped == 0 ? " (AR(1) shape held only above f = " + num(ar.f_lo, 3) + ")"
                                            : " (AR(1) shape held on " + std::to_string(ar.octaves) + " octaves down to f = " + num(ar.f_lo, 3) +
                                                  ", " + std::to_string(ar.skipped) + " left out between: fewer than " + std::to_string(colour_octaves) + ")";
   if (floor <= plateau) {
