@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "diagnosis/hypothesis_search.hpp"
@@ -295,8 +296,8 @@ bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise)
 
 }  // namespace
 
-HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
-  const DiagnosisOptions& opt = c.options;
+HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
+  const DiagnosisOptions& opt = context.options;
   HypothesisSearch h;
   h.current = d.nominal;
   std::vector<std::string> chosen;
@@ -307,10 +308,10 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
   }
   const AcceptanceRules rules = rules_of(opt);
   std::vector<double> bound;
-  for (double s : noise.sigma) bound.push_back(noise_bound_factor(c.exact.samples()) * s);
+  for (double s : noise.sigma) bound.push_back(noise_bound_factor(context.exact.samples()) * s);
   // A round: screening, refinement of the shortlist, the rules. With `at_file`, round 1 also
   // screens at the file's values (screen_at_file_values); false when that adds nothing.
-  auto run_round = [&](Round& r, int round, bool at_file) {
+  auto run_round = [&](const Context& c, Round& r, int round, bool at_file) {
     r.index = round;
     screen_round(c, h, chosen, bound, r, d);
     if (at_file && !screen_at_file_values(c, h, chosen, bound, d.nominal_far, r, d) && !d.nominal_far) return false;
@@ -318,27 +319,44 @@ HypothesisSearch search_hypotheses(const Context& c, const NominalFit& nominal, 
     refine_members_of_nil_pairs(c, h, rules.min_own_term, r, d);
     refine_richer_pairs(c, h, rules.min_own_term, r, d);
     refine_richer_below_special_cases(c, h, r);
+    refine_at_the_step_laws_need(c, h, r);
     refine_delay_numbers(c, h, bound, r);
     judge_round(c, h, noise, rules, r);
     say_round(c, r);
     return true;
   };
+  // A law named at a finer step than the screening's (refine_at_the_step_laws_need) and switched on
+  // there is in the current model from then on: the later rounds search around it at that step.
+  std::optional<DiagnosisOptions> finer_options;
+  std::optional<Simulator> finer_fast;
+  std::optional<Context> finer;
+  const Context* cc = &context;
   for (int round = 0; round < opt.max_effects; ++round) {
+    const Context& c = *cc;
     const bool at_file = round == 0 && nominal.file_values_simulated;
     Round first, again;
-    run_round(first, round, at_file && d.nominal_far);
+    run_round(c, first, round, at_file && d.nominal_far);
     Round* r = &first;
     // Round 1 named nothing although the mismatch is real: the calibration may have absorbed the
     // effect into the nominal's parameters, so round 1 again with what screens at the file's values.
     if (first.ok.empty() && at_file && !d.nominal_far) {
       c.say("round 1 named nothing: screening at the file's values too, in case the calibration absorbed an effect");
-      if (run_round(again, round, true)) r = &again;
+      if (run_round(c, again, round, true)) r = &again;
     }
     if (r->ok.empty()) break;
     const auto [pick, best] = pick_sparsest(c, *r);
     record_pick(c, *r, pick, best, equally_good(*r, noise, rules, pick), h, chosen, d);
+    if (const int step = step_after_pick(c, r->trials[pick]); step > c.options.screening_substeps) {
+      finer_options = c.options;
+      finer_options->screening_substeps = step;
+      finer_fast.emplace(context.model, context.estimation, SimulationOptions{step});
+      finer.emplace(Context{context.model, context.estimation, context.validation, *finer_options, context.exact, *finer_fast,
+                            context.exact_validation, context.say});
+      cc = &*finer;
+      context.say("  the later rounds at " + std::to_string(step) + " RK4 substeps: the law named needs them at its optimum");
+    }
     // Within the noise now? Then nothing more is missing.
-    if (stop_at_noise && round + 1 < opt.max_effects && within_noise(c, h.current, noise)) break;
+    if (stop_at_noise && round + 1 < opt.max_effects && within_noise(*cc, h.current, noise)) break;
   }
   return h;
 }

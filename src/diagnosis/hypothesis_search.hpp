@@ -33,12 +33,14 @@ struct Trial {
   std::vector<RuleCheck> rules;
   bool accepted = false;
   std::string not_beyond;  // passed against the current model, not against this special case of it
+  int substeps = 0;  // RK4 substeps of its refinement when finer than the screening's (0: the screening's)
 };
 
 // One hypothesis to refine: its candidate and the starts of its output-error calibration.
 struct ToRefine {
   const Candidate* cand;
   std::vector<Eigen::VectorXd> starts;
+  int substeps = 0;  // 0: the screening's
 };
 
 using Fixed = std::vector<std::pair<std::string, double>>;
@@ -92,6 +94,10 @@ void refine_members_of_nil_pairs(const Context& c, const HypothesisSearch& h, do
 void refine_richer_pairs(const Context& c, const HypothesisSearch& h, double min_own_term, Round& r, Diagnosis& d);
 void refine_richer_below_special_cases(const Context& c, const HypothesisSearch& h, Round& r);
 void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std::vector<double>& bound, Round& r);
+
+// refine_at_law_step.cpp
+void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, Round& r);
+int step_after_pick(const Context& c, const Trial& t);
 
 // judge_round.cpp
 void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& noise, const AcceptanceRules& rules, Round& r);

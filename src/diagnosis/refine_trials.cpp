@@ -14,10 +14,12 @@ namespace sets::diagnosis_stage {
 
 namespace {
 
-double validation_cost(const Context& c, const ModelFile& m) {
+int substeps_of(const Context& c, int substeps) { return substeps > 0 ? substeps : c.options.screening_substeps; }
+
+double validation_cost(const Context& c, const ModelFile& m, int substeps) {
   if (!c.validation) return kNaN;
   try {
-    Simulator sv(m, *c.validation, {c.options.screening_substeps});
+    Simulator sv(m, *c.validation, {substeps});
     const auto r = evaluate(sv, sv.parameter_values());
     return r.ok ? r.cost : 1e300;
   } catch (const std::exception&) {
@@ -36,7 +38,7 @@ struct Setup {
 Setup setup_of(const Context& c, const ToRefine& r, const Scales& known) {
   const Candidate& cand = *r.cand;
   Setup u;
-  Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
+  Simulator s(cand.model, c.estimation, {substeps_of(c, r.substeps)});
   u.free = s.free_parameters();
   auto ks = known;
   for (std::size_t k = 0; k < cand.parameters.size(); ++k) ks.emplace_back(cand.parameters[k], cand.scales[k]);
@@ -68,18 +70,20 @@ ModelFile without_delay(ModelFile m, const Candidate& part) {
 
 // The calibrated hypothesis (`best`: its best start) on validation, and with its own term
 // switched off.
-Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& best) {
+Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& best, int substeps) {
   Trial t;
   t.cand = cand;
+  t.substeps = substeps;
   if (!best.ok) return t;
+  const int sub = substeps_of(c, substeps);
   try {
-    Simulator s(cand.model, c.estimation, {c.options.screening_substeps});
+    Simulator s(cand.model, c.estimation, {sub});
     t.ok = true;
     t.cost = best.cost;
     t.costs = output_costs(best.fit);
     t.model = cand.model;
     store_values(t.model, best.parameters);
-    t.cost_val = validation_cost(c, t.model);
+    t.cost_val = validation_cost(c, t.model, sub);
     // Switched off: every new parameter at its neutral value (NaN: irrelevant once the others are);
     // a delay, which has no parameter, taken out.
     auto switched_off = [&](const Candidate& part) {
@@ -93,7 +97,7 @@ Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& b
     // The switched-off model on the hypothesis's simulator, or on its own when its text differs.
     auto cost_of = [&](const ModelFile& m) {
       if (m.derivatives == t.model.derivatives && m.signals == t.model.signals) return evaluate(s, values_of(m));
-      Simulator other(m, c.estimation, {c.options.screening_substeps});
+      Simulator other(m, c.estimation, {sub});
       return evaluate(other, values_of(m));
     };
     if (cand.parts.empty()) {
@@ -103,7 +107,7 @@ Trial finish(const Context& c, const Candidate& cand, const CalibrationResult& b
         const auto rn = cost_of(m);
         t.cost_neutral = rn.ok ? rn.cost : 1e300;
         if (rn.ok) t.costs_neutral = output_costs(rn.fit);
-        if (rn.ok) t.cost_neutral_val = validation_cost(c, m);
+        if (rn.ok) t.cost_neutral_val = validation_cost(c, m, sub);
       }
     } else {
       // Two at once: each must matter on its own; the rule judges the weaker one.
@@ -159,7 +163,7 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
   run_jobs(c.options.threads, jobs.size(), [&](std::size_t j) {
     const auto [i, k] = jobs[j];
     try {
-      const Simulator s(hypotheses[i].cand->model, c.estimation, {c.options.screening_substeps});
+      const Simulator s(hypotheses[i].cand->model, c.estimation, {substeps_of(c, hypotheses[i].substeps)});
       out[j].r = calibrate(s, setups[i].from[k], setups[i].free, setups[i].options);
     } catch (const std::exception&) {
       out[j].threw = true;
@@ -177,7 +181,7 @@ std::vector<Trial> refine(const Context& c, const std::vector<ToRefine>& hypothe
   std::vector<Trial> trials(n);
   run_jobs(c.options.threads, n, [&](std::size_t i) {
     if (lost[i]) best[i].ok = false;
-    trials[i] = finish(c, *hypotheses[i].cand, best[i]);
+    trials[i] = finish(c, *hypotheses[i].cand, best[i], hypotheses[i].substeps);
   });
   return trials;
 }
