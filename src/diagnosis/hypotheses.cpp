@@ -184,13 +184,7 @@ std::vector<const ScreenedHypothesis*> taken_from_file(const Round& r, const Dia
   };
   for (const auto* f : list) {
     take(f);
-    for (const Candidate& part : f->candidate.parts)  // a pair's members, each alone
-      for (const auto& h : r.at_file.ranked)
-        if (h.candidate.parts.empty() && h.candidate.effect == part.effect && h.candidate.equation == part.equation &&
-            h.candidate.delay_samples == part.delay_samples) {
-          take(&h);
-          break;
-        }
+    for (const Candidate& part : f->candidate.parts) take(screened_alone(r.at_file, part));  // a pair's members, each alone
   }
   const std::size_t absorbed = out.size();
   for (const auto* f : list)

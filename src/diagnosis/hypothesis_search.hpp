@@ -59,7 +59,7 @@ struct Round {
   std::vector<std::size_t> ok;                   // trials that pass every rule
   std::map<std::size_t, std::string> beats;      // a richer law kept: the special cases it beat
   std::deque<ScreenedHypothesis> built;          // hypotheses the round built itself (list points here)
-  Screening at_file;                             // round 1, nominal far: the screening at the file's values
+  Screening at_file;                             // round 1 (nominal far, or named nothing): the screening at the file's values
   std::map<const ScreenedHypothesis*, std::vector<Eigen::VectorXd>> from_file;  // listed: starts from it too
 };
 
@@ -75,6 +75,8 @@ Candidate best_delay(const Context& c, const ModelFile& current, const Candidate
 
 // special_cases.cpp
 std::vector<Candidate> parts_of(const Candidate& c);
+// The single hypothesis of `part` (a pair's member) in the screening, if it was screened alone.
+const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& part);
 bool nests(const Candidate& general, const Candidate& special, Fixed* fixed = nullptr);
 std::optional<Candidate> pair_on(const Context& c, const Candidate& first,
                                  const std::function<const Candidate*(const std::vector<Candidate>&)>& second_of);

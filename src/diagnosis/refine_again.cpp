@@ -159,15 +159,6 @@ bool refine_worse_than_the_baseline(const Context& c, const HypothesisSearch& h,
 
 namespace {
 
-// The single hypothesis of `part` (a pair's member) in the screening, if it was screened alone.
-const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& part) {
-  for (const auto& x : s.ranked)
-    if (x.candidate.parts.empty() && x.candidate.effect == part.effect && x.candidate.equation == part.equation &&
-        x.candidate.delay_samples == part.delay_samples)
-      return &x;
-  return nullptr;
-}
-
 // The share of pair `t`'s misfit that its member `k` removes: its cost with that member switched off
 // against its own; NaN where the member cannot be switched off.
 double member_share(const Trial& t, std::size_t k) {

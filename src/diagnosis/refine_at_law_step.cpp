@@ -44,12 +44,11 @@ int step_needed(const Context& c, const ModelFile& model, const Eigen::VectorXd&
 // to 1.2 % against 26.8 %. At a coarse optimum the law is off (Fs near 0) and shows nothing, so each
 // richer law is tested where it is on: switched on at each special case's optimum in the round.
 // Where the test asks for a finer step, the law, those special cases and every other law nesting
-// them are refined again at the finest step asked for — from their optima, the law also from its
+// them are refined again at the final step — from their optima, the law also from its
 // switched-on starts — so that the nested rule compares them at one step; each keeps the result
 // at that step (the truer number) when it can be computed.
 void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, Round& r) {
   if (c.options.screening_substeps >= c.options.final_substeps) return;
-  int step = c.options.screening_substeps;
   std::map<std::size_t, std::vector<Eigen::VectorXd>> group;  // trial -> its starts at the finer step
   const std::size_t n = r.trials.size();
   for (std::size_t i = 1; i < n; ++i) {
@@ -61,7 +60,6 @@ void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, R
             return step_needed(c, r.list[i - 1]->candidate.model, p) > c.options.screening_substeps;
           }))
         continue;
-      step = c.options.final_substeps;
       auto& starts = group[i];
       starts.insert(starts.end(), on.begin(), on.end());
       group[j];
@@ -75,6 +73,7 @@ void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, R
   std::vector<std::size_t> which;
   std::vector<ToRefine> again;
   std::string names;
+  const int step = c.options.final_substeps;
   for (auto& [i, starts] : group) {
     starts.insert(starts.begin(), values_of(r.trials[i].model));
     which.push_back(i);

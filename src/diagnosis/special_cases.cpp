@@ -13,6 +13,14 @@ namespace sets::diagnosis_stage {
 
 std::vector<Candidate> parts_of(const Candidate& c) { return c.parts.empty() ? std::vector<Candidate>{c} : c.parts; }
 
+const ScreenedHypothesis* screened_alone(const Screening& s, const Candidate& part) {
+  for (const auto& x : s.ranked)
+    if (x.candidate.parts.empty() && x.candidate.effect == part.effect && x.candidate.equation == part.equation &&
+        x.candidate.delay_samples == part.delay_samples)
+      return &x;
+  return nullptr;
+}
+
 // `general` reduces to `special` by fixing some of its parameters: each part of `general` stays
 // what it is or becomes one of its catalogue special cases (one effect or several, at its place),
 // together they are the parts of `special`, and at least one part is strictly richer. `fixed`:
