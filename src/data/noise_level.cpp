@@ -60,11 +60,16 @@ double median(std::vector<double> v) {
 // the octave that ends the band must not lie below the shape in `upper`, a density the noise's
 // cannot exceed (the raw residual's), in any octave from there down: there the noise would hold
 // more than the residual does, and the shape above it is model error's, not the noise's (`below`).
+// `contiguous`, `ended_above` and `lowest_unbent` describe the band's unbroken top part for the
+// short-band rule of from_spectrum.
 struct ArBand {
   double sigma = 0, a = 0, f_lo = 0.25;  // f_lo: lower edge of the lowest octave in the band
   int octaves = 1;                       // octaves in the band
   int skipped = 0;                       // octaves above f_lo left out as signal or model error
   bool below = false;                    // the band ended on an octave of `upper` below the shape
+  int contiguous = 1;                    // octaves from the top before the first one left out
+  bool ended_above = false;              // that top part ended on an octave above the shape
+  bool lowest_unbent = false;            // its lowest octave matched the shape fitted without it
 };
 
 ArBand ar_band(const VectorXd& f, const VectorXd& P, const VectorXd& upper) {
@@ -138,16 +143,20 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P, const VectorXd& upper) {
     // swing a far enough to meet model error further down.
     holds = holds && (!after_gap || std::abs(std::log(octave_ratio(nf, r.a, c))) <= std::log(accept));
     if (holds) {
+      if (r.skipped == 0) r.lowest_unbent = std::abs(std::log(octave_ratio(nf, r.a, c))) <= std::log(accept);
       band = grown, octaves.push_back(nf), r.f_lo = nf, r.a = a2, c = c2, after_gap = false;
       continue;
     }
     if (octaves.size() < 2) break;
+    if (r.skipped == 0) r.contiguous = static_cast<int>(octaves.size());
     if (octave_ratio(nf, r.a, c) <= accept) {
       r.below = below_to_the_end(nf, r.a, c);
       break;
     }
+    r.ended_above = r.ended_above || r.skipped == 0;
     ++r.skipped, after_gap = true;
   }
+  if (r.skipped == 0) r.contiguous = static_cast<int>(octaves.size());
   r.octaves = static_cast<int>(octaves.size());
   r.sigma = std::sqrt(c / (2 * (1 - r.a * r.a)));
   return r;
@@ -159,6 +168,20 @@ ArBand ar_band(const VectorXd& f, const VectorXd& P, const VectorXd& upper) {
 // towards Nyquist can mimic the shape over the top two octaves and one more further down.
 constexpr double colour_gate = 1.0 / 32;
 constexpr int colour_octaves = 4;
+
+// Or when the shape holds unbroken over the top three octaves (to 1/16, where it has risen 3x at
+// a = 0.3 and 25x at a = 0.9) and the band ends on an octave ABOVE it: model error only adds, so
+// an octave holding more than the shape is the model's, and the noise under it is the shape's
+// (random plant 5 004 769: AR(1) noise, a = 0.75, under the low-frequency error a named Stribeck
+// law leaves from 1/32 down; the white floor read 0.36x). The lowest of the three must match the
+// shape fitted on the two above it: model error rising into it otherwise bends the refit towards
+// a = 0.9 and the extrapolation multiplies it (white noise read 1.2x, a = 0.3 noise 3.2x).
+constexpr int short_band_octaves = 3;
+bool colour_verified(const ArBand& ar) {
+  const bool long_band = ar.f_lo <= colour_gate && ar.octaves >= colour_octaves;
+  const bool short_band = ar.contiguous >= short_band_octaves && ar.ended_above && ar.lowest_unbent;
+  return (long_band || short_band) && !ar.below;
+}
 
 struct SpectralReading {
   double sigma = 0, ar_pole = 0;
@@ -179,12 +202,15 @@ SpectralReading from_spectrum(const std::vector<VectorXd>& signals, bool bursts 
   for (std::size_t i = 1; i < signals.size(); ++i) s.density = s.density.cwiseMin(welch_spectrum(signals[i]).density);
   SpectralReading out;
   const ArBand ar = ar_band(s.frequency, s.density, first);
-  if (ar.f_lo <= colour_gate && ar.octaves >= colour_octaves && !bursts && !ar.below) {
+  if (colour_verified(ar) && !bursts) {
     out.sigma = ar.sigma;
     out.ar_pole = ar.a;
     out.coloured = true;
     out.reason = "AR(1) a = " + num(ar.a, 2) + " fits the spectrum from f = " + num(ar.f_lo, 3) + " to 0.5 cycles/sample";
-    if (ar.skipped > 0) out.reason += " (" + std::to_string(ar.skipped) + " octave(s) between left out: more power than the shape, signal or model error)";
+    if (ar.f_lo > colour_gate)
+      out.reason += " (three octaves; the " + std::to_string(ar.skipped) + " below hold more than the shape: signal or model error)";
+    else if (ar.skipped > 0)
+      out.reason += " (" + std::to_string(ar.skipped) + " octave(s) between left out: more power than the shape, signal or model error)";
     return out;
   }
   std::vector<double> top;  // 0.98: median / mean of a 30-dof chi-square

@@ -132,6 +132,35 @@ TEST(NoiseLevel, ColouredNoiseIsExtrapolatedPastAnOctaveOfModelError) {
   EXPECT_NEAR(e.ar_pole, 0.9, 0.03) << e.reason;
 }
 
+TEST(NoiseLevel, ColouredNoiseIsExtrapolatedFromThreeOctavesAboveModelErrorBelowThem) {
+  // AR(1) noise (pole 0.9) plus what the model misses at low frequencies (a disturbance the inputs
+  // do not carry, low-passed at 0.006 cycles/sample, 10x the noise RMS): the residual is the
+  // noise's shape from 1/16 to 1/2 and holds more than it in every octave below, so the band never
+  // reaches 1/32. The white floor reads sqrt((1 - a) / (1 + a)) = 0.23 of the noise (random plant
+  // 5 004 769, a = 0.75 under a named Stribeck law's low-frequency error: 0.36x).
+  const int N = 4096;
+  const VectorXd u = multisine(N, 0.001, 0.03, 1, 41);
+  const VectorXd clean = resonance(u, 0.01, 0.3);
+  const VectorXd missed = resonance(white(N, 1.0, 43), 0.006, 0.7);
+  VectorXd noise = white(N, 1.0, 42);
+  for (int k = 1; k < N; ++k) noise[k] += 0.9 * noise[k - 1];
+  noise *= 1e-2 * rms(clean) / rms(noise);
+  for (double scale : {1e-6, 1.0}) {
+    const VectorXd y = scale * (clean + noise + 10 * rms(noise) / rms(missed) * missed);
+    const NoiseLevelEstimate e = estimate_noise(y, scale * clean, u);
+    EXPECT_EQ(e.method, NoiseMethod::residual_coloured) << e.reason;
+    EXPECT_NEAR(e.sigma / (scale * rms(noise)), 1.0, 0.3) << e.reason;
+    EXPECT_GT(e.ar_pole, 0.85) << e.reason;
+  }
+  // White noise under 3x stronger model error, whose tail rises into the third octave: the refit
+  // over three octaves bends towards a = 0.23 and read 1.19x; the third octave must match the shape
+  // of the two above it, so the white floor reads the noise.
+  const VectorXd w = white(N, 1e-2 * rms(clean), 42);
+  const NoiseLevelEstimate e = estimate_noise(clean + w + 30 * rms(w) / rms(missed) * missed, clean, u);
+  EXPECT_NEAR(e.sigma / rms(w), 1.0, 0.1) << e.reason;
+  EXPECT_LT(e.ar_pole, 0.1) << e.reason;
+}
+
 TEST(NoiseLevel, ModelErrorShapedLikeColouredNoiseAboveABandIsNotExtrapolated) {
   // White noise plus what the model misses above f = 1/32 only, shaped so that the residual's
   // density is exactly AR(1)'s (pole 0.8) from 1/32 to 1/2 and the noise's own below 1/32. The shape
