@@ -17,7 +17,7 @@ namespace sets {
 /// How the noise level was obtained, most reliable first.
 enum class NoiseMethod {
   repeats,            // the exogenous inputs repeat: the output's difference over the lag is noise
-  residual_coloured,  // residual of the calibrated model; AR(1) noise shape verified from 1/32 to 1/2 cycles/sample
+  residual_coloured,  // residual of the calibrated model; AR(1) noise shape verified from 1/32 (or 1/16, model error below) to 1/2 cycles/sample
   residual_floor,     // residual of the calibrated model; its white floor (a lower bound for coloured noise)
   output_spectrum,    // no model: the output's own spectrum (white floor or difference plateau)
 };
@@ -28,7 +28,7 @@ struct NoiseLevelEstimate {
   NoiseMethod method = NoiseMethod::output_spectrum;
   std::string reason;               // what was found, in one line
   double quantisation_step = 0;     // the output's lattice step q when it is quantised (0: not)
-  /// The AR(1) pole a of the noise when its colour was verified from 1/32 to 1/2 cycles/sample
+  /// The AR(1) pole a of the noise when its colour was verified from 1/32 (or 1/16) to 1/2 cycles/sample
   /// (method residual_coloured, or output_spectrum read as coloured); 0 otherwise (white, or not
   /// known: repeats and the white floor say nothing of the colour). Read above the signal's band.
   double ar_pole = 0;
@@ -42,7 +42,8 @@ struct NoiseLevelEstimate {
 /// judged by repeats; repeated stretches of the inputs give the noise directly; otherwise the
 /// residual y - simulated, projected off short FIRs of the simulated output, its square and
 /// cube and the inputs, is read from its Welch spectrum (an AR(1) shape extrapolated when it holds
-/// from 1/32 to 1/2 cycles/sample, else the white floor of the top 1/8 band or the plateau of
+/// from 1/32 to 1/2 cycles/sample, or unbroken from 1/16 with more power than the shape below it,
+/// else the white floor of the top 1/8 band or the plateau of
 /// the differences, whichever is lower), capped by the projected residual's RMS; without a model
 /// the same reading of y itself. Never below q/sqrt(12).
 NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y,
