@@ -175,7 +175,7 @@ constexpr int colour_octaves = 4;
 // (random plant 5 004 769: AR(1) noise, a = 0.75, under the low-frequency error a named Stribeck
 // law leaves from 1/32 down; the white floor read 0.36x). The lowest of the three must match the
 // shape fitted on the two above it: model error rising into it otherwise bends the refit towards
-// a = 0.9 and the extrapolation multiplies it (white noise read 1.2x, a = 0.3 noise 3.2x).
+// a = 0.9 and the extrapolation multiplies it (synthetic: white noise read 1.2x, a = 0.3 noise 3.2x).
 constexpr int short_band_octaves = 3;
 bool colour_verified(const ArBand& ar) {
   const bool long_band = ar.f_lo <= colour_gate && ar.octaves >= colour_octaves;
