@@ -589,6 +589,7 @@ EquationErrorRegression EquationRegression::build(int w) {
     if (!problem.empty()) return fail(problem);
     integrate(w, inertia, linear, g, D, res);
     res.built = true;
+    res.from_samples = !needed_sampled_.empty() || !prevs_.empty();
     res.has_inertia = inertia >= 0;
     res.window = w;
     res.order = order_;
@@ -716,6 +717,7 @@ EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& dat
   const int w = window > 0 ? window : std::clamp(data.rows() / 200, 4, 500);
   const EquationErrorRegression g = equation_error_regressions(model, data, state, {w}, noise).front();
   fit.note = g.note;
+  fit.from_samples = g.from_samples;
   if (!g.built) return fit;
   // Least squares in scaled unknowns; a homogeneous regression (nothing known on the right, an
   // inertia present) fixes the inertia at the model's value: the scale is not identifiable.

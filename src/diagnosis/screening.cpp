@@ -351,13 +351,16 @@ std::vector<std::string> equation_error_states(const ModelFile& current, const C
   return states_using(c.model, c.parameters);
 }
 
-// The equation-error fit of one state equation of a candidate: as the candidate stands, or, when
-// its nonlinear parameters keep that from being built (a Stribeck velocity, a play inside a
-// sampled signal's history), with them fixed at the best grid point (the first start).
+// The equation-error fit of one state equation of a candidate: as the candidate stands, or, for an
+// actuator law (a play or threshold inside a sampled signal, whose history a free parameter would
+// move), with its nonlinear parameters fixed at the best grid point (the first start). A law in
+// the state equation itself is fitted as it stands (Stribeck's vs keeps it from being built).
 EquationErrorFit candidate_fit(const Candidate& c, const Recording& data, const ColumnNoise& column_noise,
                                const std::string& state, const std::vector<Eigen::VectorXd>& starts) {
   EquationErrorFit f = equation_error_fit(c.model, data, state, 0, column_noise);
-  if (f.built || starts.empty() || std::all_of(c.linear.begin(), c.linear.end(), [](bool l) { return l; })) return f;
+  if (f.built || state == c.equation || starts.empty() ||
+      std::all_of(c.linear.begin(), c.linear.end(), [](bool l) { return l; }))
+    return f;
   ModelFile at_grid = c.model;
   for (std::size_t q = 0; q < at_grid.parameters.size(); ++q) at_grid.parameters[q].value = starts.front()[static_cast<Eigen::Index>(q)];
   for (std::size_t k = 0; k < c.parameters.size(); ++k)
@@ -376,7 +379,11 @@ void add_equation_error_start(const Candidate& c, const Recording& data, const C
   for (const auto& [state, baseline] : baselines) {
     try {
       const EquationErrorFit f = candidate_fit(c, data, column_noise, state, h.starts);
-      if (!f.built) continue;
+      // A law in the state equation keeps the fits it had: one from sampled signals (a position
+      // loop's force balance) would start Coulomb friction there but never Stribeck's richer law,
+      // whose vs keeps the regression from being built, and the nested rule then names the
+      // special case (development plant 5 002 818, Hypotheses.RicherLawIsRefinedAgain...).
+      if (!f.built || (state == c.equation && f.from_samples)) continue;
       const double gain = 1 - (f.relative_residual * f.relative_residual) / (baseline * baseline);
       if (!std::isfinite(h.ee_gain) || gain > h.ee_gain) h.ee_gain = gain;
       if (st.size() == 0) continue;
