@@ -252,6 +252,14 @@ void lower_baseline(const Context& c, HypothesisSearch& h, Round& r) {
   }
 }
 
+bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise) {
+  Simulator s(m, c.estimation, {c.options.screening_substeps});
+  const SimulationResult r = s.simulate(values_of(m));
+  return test_residual(s, values_of(m), r, noise.sigma, noise.pole).within_noise();
+}
+
+}  // namespace
+
 // The shortlist refined by output error beside the null hypothesis (the current model calibrated
 // with the same budget: a hypothesis must beat it, so that a better optimum of the old parameters
 // is not credited to a new effect). Sets the baseline; h.current takes the null's optimum.
@@ -281,14 +289,6 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   lower_baseline(c, h, r);
   if (refine_worse_than_the_baseline(c, h, r)) lower_baseline(c, h, r);
 }
-
-bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise) {
-  Simulator s(m, c.estimation, {c.options.screening_substeps});
-  const SimulationResult r = s.simulate(values_of(m));
-  return test_residual(s, values_of(m), r, noise.sigma, noise.pole).within_noise();
-}
-
-}  // namespace
 
 HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
   const DiagnosisOptions& opt = context.options;
@@ -352,6 +352,7 @@ HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nom
     // Within the noise now? Then nothing more is missing.
     if (stop_at_noise && round + 1 < opt.max_effects && within_noise(*cc, h.current, noise)) break;
   }
+  upgrade_named_laws(*cc, h, noise, rules, d);
   return h;
 }
 

@@ -63,6 +63,11 @@ struct Round {
   std::map<const ScreenedHypothesis*, std::vector<Eigen::VectorXd>> from_file;  // listed: starts from it too
 };
 
+// hypotheses.cpp
+// The round's shortlist refined by output error beside the null hypothesis (the current model
+// calibrated again); sets the baseline, and h.current takes the null's optimum.
+void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d);
+
 // refine_trials.cpp
 // `m` with every parameter it leaves free at `file`'s value where the file declares it: the start
 // the nominal's own calibration had, before that calibration could absorb a missing effect.
@@ -100,6 +105,12 @@ void refine_delay_numbers(const Context& c, const HypothesisSearch& h, const std
 // refine_at_law_step.cpp
 void refine_at_the_step_laws_need(const Context& c, const HypothesisSearch& h, Round& r);
 int step_after_pick(const Context& c, const Trial& t);
+
+// upgrade_named_laws.cpp
+// After the rounds, each named special case of a richer law (Coulomb friction; Coulomb friction +
+// an offset at one place) judged again against its richer laws beside every other effect named;
+// replaced in h and d when the round's rules pick the richer law.
+void upgrade_named_laws(const Context& c, HypothesisSearch& h, const NoiseFloor& noise, const AcceptanceRules& rules, Diagnosis& d);
 
 // judge_round.cpp
 void judge_round(const Context& c, const HypothesisSearch& h, const NoiseFloor& noise, const AcceptanceRules& rules, Round& r);
