@@ -23,12 +23,6 @@ namespace sets {
 
 namespace {
 
-// The model symbols an expression uses (the Simulator built before has checked every expression).
-std::set<std::string> used_symbols(const std::string& text) {
-  const auto e = check_expression(text, [](const std::string&) { return true; }, "equation");
-  return {e.symbols.begin(), e.symbols.end()};
-}
-
 std::string trimmed(const std::string& s) { return boost::algorithm::trim_copy_if(s, boost::is_any_of(" \t")); }
 
 }  // namespace
@@ -96,7 +90,11 @@ class EquationRegression {
   void find_measured(const Recording& data);
   bool choose_order();
   bool resolve_symbols(const std::string& f_text);
+  bool resolve_one(const std::string& text, bool sampled, std::vector<std::pair<std::string, bool>>& todo);
   void compile(const std::string& f_text);
+  void evaluate_sampled();
+  void set_prevs(int k);
+  std::string sampled_note() const;
   void estimate_noise_of_integrals(const ColumnNoise& noise);
   Eigen::VectorXd integrated_derivative(int w) const;
   void bind_sample_values(int w);
@@ -119,8 +117,12 @@ class EquationRegression {
   std::map<std::string, std::string> derivative_of_;  // z -> measured p with p' = z
   int order_ = 0;
   const Eigen::VectorXd* integrated_ = nullptr;  // x (order 1) or p with p' = x (order 2)
-  std::map<std::string, int> kind_;  // 0 time, 1 parameter, 2 measured, 3 differentiated, 4 signal
-  std::set<std::string> needed_signals_, differentiated_;
+  std::map<std::string, int> kind_;  // 0 time, 1 parameter, 2 measured, 3 differentiated, 5 sampled
+  std::set<std::string> needed_signals_, needed_sampled_, differentiated_;
+  std::map<std::string, Eigen::VectorXd> at_sample_;  // measured symbols at the samples, then sampled signals
+  std::set<std::string> known_at_start_;              // inputs and states: prev() at sample 0 is their value
+  std::vector<Prev_reference> prevs_;                 // prev(x, n) of the equation, its signals and sampled signals
+  std::vector<std::pair<double*, mu::Parser>> sampled_;  // needed sampled signals, model order
   std::map<std::string, double> vars_;  // node addresses are stable
   std::vector<std::pair<double*, mu::Parser>> signals_;
   mu::Parser f_;
@@ -130,6 +132,14 @@ class EquationRegression {
   int combos_ = 1;  // 3^(differentiated states): low, centre and high of each estimate
   int wv_ = 1;      // half-width of the central difference (samples)
   std::vector<Measured> measured_at_;
+  std::vector<std::pair<double*, const Eigen::VectorXd*>> sampled_at_;  // held over each interval
+  struct PastAt {  // prev(x, n): where it goes, x at the samples, n, and whether x is known at sample 0
+    double* at;
+    const Eigen::VectorXd* x;
+    int lag;
+    bool known_at_start;
+  };
+  std::vector<PastAt> prev_at_;
   std::vector<Differentiated> dz_at_;
   std::vector<double*> parameter_at_;
   double* t_at_ = nullptr;
@@ -144,8 +154,13 @@ void EquationRegression::find_measured(const Recording& data) {
     const Intersample mode = declared_intersample(model_, sym);
     const std::vector<double> mid = input_between_samples(data.column(col), mode, 0.5);
     measured_[sym] = Eigen::Map<const Eigen::VectorXd>(mid.data(), static_cast<Eigen::Index>(mid.size()));
+    const std::vector<double> at = input_between_samples(data.column(col), mode, 0.0);
+    at_sample_[sym] = Eigen::Map<const Eigen::VectorXd>(at.data(), static_cast<Eigen::Index>(at.size()));
+    known_at_start_.insert(sym);
   }
-  for (const auto& [sym, col] : model_.outputs) measured_[sym] = column_of(data, col), column_name_[sym] = col;
+  for (const auto& [sym, col] : model_.outputs)
+    measured_[sym] = at_sample_[sym] = column_of(data, col), column_name_[sym] = col;
+  for (const auto& s : model_.states) known_at_start_.insert(s.name);
   for (const auto& s : model_.states)
     if (measured_.count(s.name))
       if (const std::string* d = model_.derivative(s.name)) {
@@ -170,41 +185,83 @@ bool EquationRegression::choose_order() {
   return true;
 }
 
-// Which symbols the equation needs (through its signals), and whether each one is available.
+// Which symbols the equation needs (through its signals and sampled signals), and whether each
+// one is available.
 bool EquationRegression::resolve_symbols(const std::string& f_text) {
   kind_["t"] = 0;
   kind_["Ts"] = 0;
   for (const auto& p : model_.parameters) kind_[p.name] = 1;
   for (const auto& [sym, v] : measured_) kind_[sym] = 2;
   for (const auto& [z, p] : derivative_of_) kind_[z] = 3;
-  std::vector<std::string> todo{f_text};
+  std::vector<std::pair<std::string, bool>> todo{{f_text, false}};  // text, is a sampled signal's
   while (!todo.empty()) {
-    const std::string text = todo.back();
+    const auto [text, sampled] = todo.back();
     todo.pop_back();
-    if (text.find("prev") != std::string::npos) {
-      problem_ = "the equation uses prev()";
-      return false;
-    }
-    for (const auto& s : used_symbols(text)) {
-      if (kind_.count(s)) {
-        if (kind_[s] == 3) differentiated_.insert(s);
-        continue;
-      }
-      bool found = false;
-      for (const auto& [name, expr] : model_.signals)
-        if (name == s) {
-          found = true;
-          if (needed_signals_.insert(s).second) todo.push_back(expr);
-        }
-      if (!found) {
-        problem_ = "\"" + s + "\" is neither measured nor computable from measurements";
-        return false;
-      }
-    }
+    if (!resolve_one(text, sampled, todo)) return false;
   }
   if (differentiated_.size() > 3) {
     problem_ = "more than three differentiated states";
     return false;
+  }
+  return true;
+}
+
+// One text: a past (prev) must be measured or a sampled signal's; a sampled signal is evaluated
+// once, sample by sample, so it may use only what is known at the samples (measured symbols,
+// other sampled signals, fixed parameters): a free parameter would change its whole history.
+bool EquationRegression::resolve_one(const std::string& text, bool sampled, std::vector<std::pair<std::string, bool>>& todo) {
+  const auto e = check_expression(text, [](const std::string&) { return true; }, "equation");
+  auto is_sampled = [&](const std::string& s) {
+    for (const auto& [name, expr] : model_.sampled)
+      if (name == s) return true;
+    return false;
+  };
+  auto need_sampled = [&](const std::string& s) {
+    kind_[s] = 5;
+    if (!needed_sampled_.insert(s).second) return;
+    for (const auto& [name, expr] : model_.sampled)
+      if (name == s) todo.emplace_back(expr, true);
+  };
+  for (const auto& pr : e.prevs) {
+    const auto k = kind_.find(pr.symbol);
+    const bool known = k != kind_.end() && (k->second == 2 || k->second == 5);
+    if (!known && !is_sampled(pr.symbol)) {
+      problem_ = "the past prev(" + pr.symbol + ", " + std::to_string(pr.lag) + ") is neither measured nor computable from measurements";
+      return false;
+    }
+    if (!known) need_sampled(pr.symbol);
+    if (std::none_of(prevs_.begin(), prevs_.end(), [&](const Prev_reference& q) { return q.variable == pr.variable; }))
+      prevs_.push_back(pr);
+  }
+  for (const auto& s : e.symbols) {
+    const auto k = kind_.find(s);
+    if (k != kind_.end()) {
+      if (sampled && (k->second == 3 || k->second == 4)) {
+        problem_ = "a sampled signal uses \"" + s + "\", which is not measured at the samples";
+        return false;
+      }
+      if (sampled && k->second == 1 && !model_.parameter(s)->fixed) {
+        problem_ = "a sampled signal depends on the free parameter \"" + s + "\" through its history";
+        return false;
+      }
+      if (k->second == 3) differentiated_.insert(s);
+      continue;
+    }
+    if (is_sampled(s)) {
+      need_sampled(s);
+      continue;
+    }
+    bool found = false;
+    for (const auto& [name, expr] : model_.signals)
+      if (name == s && !sampled) {
+        found = true;
+        kind_[s] = 4;
+        if (needed_signals_.insert(s).second) todo.emplace_back(expr, false);
+      }
+    if (!found) {
+      problem_ = "\"" + s + "\" is neither measured nor computable from measurements";
+      return false;
+    }
   }
   return true;
 }
@@ -223,6 +280,12 @@ void EquationRegression::compile(const std::string& f_text) {
       signals_.emplace_back(&vars_[name], mu::Parser());
       compile_one(signals_.back().second, expr);
     }
+  sampled_.reserve(model_.sampled.size());
+  for (const auto& [name, expr] : model_.sampled)
+    if (needed_sampled_.count(name)) {
+      sampled_.emplace_back(&vars_[name], mu::Parser());
+      compile_one(sampled_.back().second, expr);
+    }
   compile_one(f_, f_text);
   theta_hat_.resize(static_cast<Eigen::Index>(model_.parameters.size()));
   for (std::size_t i = 0; i < model_.parameters.size(); ++i) {
@@ -240,6 +303,37 @@ void EquationRegression::compile(const std::string& f_text) {
   t_at_ = &vars_["t"];
   ts_at_ = &vars_["Ts"];
   for (std::size_t i = 0; i < differentiated_.size(); ++i) combos_ *= 3;
+  evaluate_sampled();
+  for (const auto& s : needed_sampled_) sampled_at_.emplace_back(&vars_[s], &at_sample_[s]);
+}
+
+// The past prev(x, n) as the simulator gives it before sample interval k: x at sample k - n, or
+// at sample 0 (an input's or a state's value there; a sampled signal's own past is 0).
+void EquationRegression::set_prevs(int k) {
+  for (const auto& p : prev_at_) {
+    const int kk = std::max(0, k - p.lag);
+    *p.at = kk < k || p.known_at_start ? (*p.x)[kk] : 0.0;
+  }
+}
+
+// The needed sampled signals, once, in time order as the simulator evaluates them: from the
+// measured symbols at each sample (inputs held, measured states and outputs as measured), their
+// own past included; every parameter they use is fixed (resolve_one).
+void EquationRegression::evaluate_sampled() {
+  for (const auto& s : needed_sampled_) at_sample_[s] = Eigen::VectorXd::Zero(N_);
+  for (const auto& pr : prevs_)
+    prev_at_.push_back({&vars_[pr.variable], &at_sample_.at(pr.symbol), pr.lag, known_at_start_.count(pr.symbol) > 0});
+  if (sampled_.empty()) return;
+  for (std::size_t i = 0; i < parameter_at_.size(); ++i) *parameter_at_[i] = theta_hat_[static_cast<Eigen::Index>(i)];
+  *ts_at_ = Ts_;
+  for (int k = 0; k < N_; ++k) {
+    *t_at_ = sim_.time()[static_cast<std::size_t>(k)];
+    for (const auto& [sym, v] : at_sample_)
+      if (kind_.count(sym) && kind_.at(sym) == 2) vars_[sym] = v[k];
+    set_prevs(k);
+    for (auto& [slot, p] : sampled_) *slot = p.Eval();
+    for (const auto& s : needed_sampled_) at_sample_[s][k] = vars_[s];
+  }
 }
 
 // The noise of each differentiated state's measured integral, once for every window (only the
@@ -285,6 +379,8 @@ void EquationRegression::set_sample(int j, int combo) {
   *t_at_ = sim_.time()[static_cast<std::size_t>(j)] + 0.5 * Ts_;
   *ts_at_ = Ts_;
   for (const auto& m : measured_at_) *m.at = m.is_state ? 0.5 * ((*m.v)[j] + (*m.v)[j1]) : (*m.v)[j];
+  for (const auto& [at, v] : sampled_at_) *at = (*v)[j];
+  set_prevs(j);
   int c = combo;
   for (const auto& z : dz_at_) {
     *z.at = 0.5 * (z.zhat[j] + z.zhat[j1]) + (c % 3 - 1) * z.rho;
@@ -462,6 +558,16 @@ void EquationRegression::integrate(int w, int inertia, const std::vector<int>& l
   res.rows = static_cast<int>(m);
 }
 
+// What the sampled signals and pasts rest on: measured values at the samples, whose noise is
+// then part of the equation error the bound covers.
+std::string EquationRegression::sampled_note() const {
+  if (needed_sampled_.empty() && prevs_.empty()) return "";
+  std::string names;
+  for (const auto& s : needed_sampled_) names += (names.empty() ? "" : ", ") + s;
+  for (const auto& p : prevs_) names += (names.empty() ? "prev(" : ", prev(") + p.symbol + ", " + std::to_string(p.lag) + ")";
+  return "; " + names + " evaluated sample by sample from the measured inputs and states (as measured: their noise is part of the equation error)";
+}
+
 EquationErrorRegression EquationRegression::build(int w) {
   EquationErrorRegression res;
   auto fail = [&](const std::string& why) {
@@ -483,6 +589,7 @@ EquationErrorRegression EquationRegression::build(int w) {
     if (!problem.empty()) return fail(problem);
     integrate(w, inertia, linear, g, D, res);
     res.built = true;
+    res.from_samples = !needed_sampled_.empty() || !prevs_.empty();
     res.has_inertia = inertia >= 0;
     res.window = w;
     res.order = order_;
@@ -499,7 +606,8 @@ EquationErrorRegression EquationRegression::build(int w) {
       dnote += ", " + z + " = d" + derivative_of_[z] + "/dt +- " + std::to_string(dz_at_[i++].rho);
     res.note = "integrated " + std::to_string(order_) + "x over " + std::to_string(w) + " samples, " +
                std::to_string(res.rows) + " strips" + dnote +
-               (differentiated_.empty() ? "" : " (3 sigma of the central difference over +-" + std::to_string(wv_) + " samples)");
+               (differentiated_.empty() ? "" : " (3 sigma of the central difference over +-" + std::to_string(wv_) + " samples)") +
+               sampled_note();
   } catch (const mu::Parser::exception_type& e) {
     return fail("expression evaluation failed: " + e.GetMsg());
   }
@@ -609,6 +717,7 @@ EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& dat
   const int w = window > 0 ? window : std::clamp(data.rows() / 200, 4, 500);
   const EquationErrorRegression g = equation_error_regressions(model, data, state, {w}, noise).front();
   fit.note = g.note;
+  fit.from_samples = g.from_samples;
   if (!g.built) return fit;
   // Least squares in scaled unknowns; a homogeneous regression (nothing known on the right, an
   // inertia present) fixes the inertia at the model's value: the scale is not identifiable.

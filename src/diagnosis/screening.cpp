@@ -7,7 +7,9 @@
 #include <map>
 #include <optional>
 #include <mutex>
+#include <set>
 
+#include "models/expression.hpp"
 #include "sets/data/simulation.hpp"
 #include "sets/diagnosis/equation_error.hpp"
 #include "sets/fps/feasible_parameter_set.hpp"
@@ -322,26 +324,80 @@ std::vector<ScreenedHypothesis> screen_pairs(const Around& a, const Eigen::Vecto
   return out;
 }
 
-// The equation-error fit of a candidate: its gain over the current model's (baseline: that
-// model's relative residual) and its estimates as another start, the nonlinear parameters from
-// the best grid point. A fit that cannot be built adds nothing.
-void add_equation_error_start(const Candidate& c, const Recording& data, const ColumnNoise& column_noise, double baseline,
-                              ScreenedHypothesis& h) {
-  try {
-    const EquationErrorFit f = equation_error_fit(c.model, data, c.equation, 0, column_noise);
-    if (!f.built) return;
-    h.ee_gain = 1 - (f.relative_residual * f.relative_residual) / (baseline * baseline);
-    if (h.starts.empty()) return;
-    Eigen::VectorXd st = h.starts.front();
-    for (std::size_t k = 0; k < f.parameters.size(); ++k)
-      for (std::size_t q = 0; q < c.model.parameters.size(); ++q)
-        if (c.model.parameters[q].name == f.parameters[k]) {
-          const auto& mp = c.model.parameters[q];
-          st[static_cast<Eigen::Index>(q)] = std::clamp(f.estimate[k], mp.min, mp.max);
-        }
-    h.starts.push_back(st);
-  } catch (const std::exception&) {
+// The state equations of `model` that use any of `names`, directly or through signals and
+// sampled signals: where an actuator's new signal acts.
+std::vector<std::string> states_using(const ModelFile& model, const std::vector<std::string>& names) {
+  std::set<std::string> reach(names.begin(), names.end());
+  auto uses_any = [&](const std::string& text) {
+    const auto e = check_expression(text, [](const std::string&) { return true; }, "equation");
+    return std::any_of(e.symbols.begin(), e.symbols.end(), [&](const std::string& x) { return reach.count(x) > 0; });
+  };
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const auto* texts : {&model.signals, &model.sampled})
+      for (const auto& [n, e] : *texts)
+        if (!reach.count(n) && uses_any(e)) grew = reach.insert(n).second;
   }
+  std::vector<std::string> out;
+  for (const auto& st : model.states)
+    if (const std::string* d = model.derivative(st.name); d && uses_any(*d)) out.push_back(st.name);
+  return out;
+}
+
+// The state equations a candidate's equation error is fitted on: its own, or those its actuator
+// signal drives.
+std::vector<std::string> equation_error_states(const ModelFile& current, const Candidate& c) {
+  if (current.derivative(c.equation)) return {c.equation};
+  return states_using(c.model, c.parameters);
+}
+
+// The equation-error fit of one state equation of a candidate: as the candidate stands, or, for an
+// actuator law (a play or threshold inside a sampled signal, whose history a free parameter would
+// move), with its nonlinear parameters fixed at the best grid point (the first start). A law in
+// the state equation itself is fitted as it stands (Stribeck's vs keeps it from being built).
+EquationErrorFit candidate_fit(const Candidate& c, const Recording& data, const ColumnNoise& column_noise,
+                               const std::string& state, const std::vector<Eigen::VectorXd>& starts) {
+  EquationErrorFit f = equation_error_fit(c.model, data, state, 0, column_noise);
+  if (f.built || state == c.equation || starts.empty() ||
+      std::all_of(c.linear.begin(), c.linear.end(), [](bool l) { return l; }))
+    return f;
+  ModelFile at_grid = c.model;
+  for (std::size_t q = 0; q < at_grid.parameters.size(); ++q) at_grid.parameters[q].value = starts.front()[static_cast<Eigen::Index>(q)];
+  for (std::size_t k = 0; k < c.parameters.size(); ++k)
+    if (!c.linear[k]) at_grid.parameter(c.parameters[k])->fixed = true;
+  return equation_error_fit(at_grid, data, state, 0, column_noise);
+}
+
+// The equation-error fits of a candidate: its gain over the current model's (baseline: that
+// model's relative residual on the same equation; the best over the equations fitted) and its
+// estimates as another start, the nonlinear parameters from the best grid point. A fit that
+// cannot be built adds nothing.
+void add_equation_error_start(const Candidate& c, const Recording& data, const ColumnNoise& column_noise,
+                              const std::map<std::string, double>& baselines, ScreenedHypothesis& h) {
+  Eigen::VectorXd st = h.starts.empty() ? Eigen::VectorXd() : h.starts.front();
+  bool moved = false;
+  for (const auto& [state, baseline] : baselines) {
+    try {
+      const EquationErrorFit f = candidate_fit(c, data, column_noise, state, h.starts);
+      // A law in the state equation keeps the fits it had: one from sampled signals (a position
+      // loop's force balance) would start Coulomb friction there but never Stribeck's richer law,
+      // whose vs keeps the regression from being built, and the nested rule then names the
+      // special case (development plant 5 002 818, Hypotheses.RicherLawIsRefinedAgain...).
+      if (!f.built || (state == c.equation && f.from_samples)) continue;
+      const double gain = 1 - (f.relative_residual * f.relative_residual) / (baseline * baseline);
+      if (!std::isfinite(h.ee_gain) || gain > h.ee_gain) h.ee_gain = gain;
+      if (st.size() == 0) continue;
+      for (std::size_t k = 0; k < f.parameters.size(); ++k)
+        for (std::size_t q = 0; q < c.model.parameters.size(); ++q)
+          if (c.model.parameters[q].name == f.parameters[k]) {
+            const auto& mp = c.model.parameters[q];
+            st[static_cast<Eigen::Index>(q)] = std::clamp(f.estimate[k], mp.min, mp.max);
+            moved = true;
+          }
+    } catch (const std::exception&) {
+    }
+  }
+  if (moved) h.starts.push_back(st);
 }
 
 }  // namespace
@@ -377,14 +433,20 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
   // Equation-error baselines, one per state equation (the current model's own least squares).
   // The noise of the measured columns (a property of the data) once, not once per hypothesis.
   std::map<std::string, double> ee_base;
+  std::vector<std::map<std::string, double>> ee_bases(candidates.size());  // per candidate: its states' baselines
   ColumnNoise column_noise;
   if (o.equation_error) column_noise = measured_noise(current, data);
   if (o.equation_error)
-    for (const auto& c : candidates)
-      if (current.derivative(c.equation) && !ee_base.count(c.equation)) {
-        const EquationErrorFit f = equation_error_fit(current, data, c.equation, 0, column_noise);
-        ee_base[c.equation] = f.built ? f.relative_residual : -1;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (candidates[i].effect == "time_delay") continue;
+      for (const auto& state : equation_error_states(current, candidates[i])) {
+        if (!ee_base.count(state)) {
+          const EquationErrorFit f = equation_error_fit(current, data, state, 0, column_noise);
+          ee_base[state] = f.built ? f.relative_residual : -1;
+        }
+        if (ee_base[state] > 0) ee_bases[i][state] = ee_base[state];
       }
+    }
   std::vector<ScreenedHypothesis> hs(candidates.size());
   // Longest first (simulations: one per grid point and one per new parameter at each), so that
   // the screening does not end on one long candidate while the other thread idles; results are
@@ -403,9 +465,7 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
       hs[i].cost = std::numeric_limits<double>::infinity();
       hs[i].note = e.what();
     }
-    const auto it = ee_base.find(candidates[i].equation);
-    if (it != ee_base.end() && it->second > 0 && candidates[i].effect != "time_delay")
-      add_equation_error_start(candidates[i], data, column_noise, it->second, hs[i]);
+    if (!ee_bases[i].empty()) add_equation_error_start(candidates[i], data, column_noise, ee_bases[i], hs[i]);
   });
   for (int n : sims) out.simulations += n;
   for (auto& h : hs) {

@@ -9,6 +9,7 @@
 #include "sets/diagnosis/equation_error.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "sets/models/model_file.hpp"
+#include "support/plant_fixtures.hpp"
 
 using namespace sets;
 
@@ -27,7 +28,8 @@ ModelFile with_coulomb_friction(ModelFile m) {
 
 // Equation-error PUIs of the Coulomb plant's force balance, measured at values a little off the
 // truth (as an estimate would be): every true parameter must lie in its interval, and the
-// parameters that enter nonlinearly or through prev() are refused with a reason.
+// parameters that enter nonlinearly or through the past of an unmeasured state are refused with a
+// reason.
 TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
   const SyntheticPlant p = synthetic_plant("coulomb_friction");
   ModelFile m = with_coulomb_friction(p.nominal);
@@ -49,8 +51,8 @@ TEST(EquationError, PuiContainsTheTrueParametersOfTheCoulombPlant) {
   ModelFile nonlinear = m;
   *nonlinear.derivative("v") = "(K*u - k*x - c*v - Fc*sign(v)*exp(-(v/m)^2))/m";
   EXPECT_FALSE(equation_error_pui(nonlinear, p.estimation, "v").built);
-  ModelFile delayed = m;
-  *delayed.derivative("v") = "(K*prev(u, 3) - k*x - c*v)/m";
+  ModelFile delayed = m;  // the past of an unmeasured (differentiated) state is not known
+  *delayed.derivative("v") = "(K*u - k*x - c*prev(v, 3))/m";
   const EquationErrorResult rd = equation_error_pui(delayed, p.estimation, "v");
   EXPECT_FALSE(rd.built);
   EXPECT_NE(rd.note.find("prev"), std::string::npos) << rd.note;
@@ -87,4 +89,52 @@ TEST(EquationError, NoiseOfTheColumnsPassedInGivesTheSameRegression) {
   ASSERT_TRUE(a.built && b.built);
   EXPECT_EQ(a.estimate, b.estimate);
   EXPECT_EQ(a.relative_residual, b.relative_residual);
+}
+
+namespace {
+
+// A position loop: a sampled PD controller h (with the past of the measured position) drives the
+// mass through a play b (a backlash written with its own past), truth M = 2, c = 3.
+std::string position_loop(const std::string& M, const std::string& c, const std::string& b) {
+  return R"J({"time": "t", "inputs": {"r": "r"},
+    "parameters": {"M": )J" + M + R"J(, "c": )J" + c + R"J(, "b": )J" + b + R"J(,
+                   "P": {"value": 200, "fixed": true}, "D": {"value": 25, "fixed": true}},
+    "states": {"q": 0.0, "v": 0.0},
+    "sampled": {"h": "P*(r - q) - D*(q - prev(q, 1))/Ts", "h_bl": "max(h - b, min(h + b, prev(h_bl, 1)))"},
+    "derivatives": {"q": "v", "v": "(h_bl - c*v)/M"},
+    "outputs": {"q": "q_meas"}})J";
+}
+
+}  // namespace
+
+// The sampled controller and the play are evaluated from the measured position sample by sample
+// (as the simulator does, the play's own past included): the regression of v recovers the truth's
+// M and c from values far off, and its PUI holds them. A play left free is refused: the play's
+// history would depend on it.
+TEST(EquationError, SampledControllerAndPlayAreEvaluatedFromTheMeasurements) {
+  const SyntheticPlant p = test::simulated_plant(position_loop("2.0", "3.0", "{\"value\": 4.0, \"fixed\": true}"),
+                                                 position_loop("2.0", "3.0", "{\"value\": 4.0, \"fixed\": true}"), 4000,
+                                                 0.005, {"r", -1, 1, 0.3, 1.5}, 1e-4, 7);
+  ModelFile m = p.truth;
+  m.parameter("M")->value = 1.2;
+  m.parameter("c")->value = 6.0;
+  const EquationErrorFit f = equation_error_fit(m, p.estimation, "v");
+  ASSERT_TRUE(f.built) << f.note;
+  ASSERT_EQ(f.parameters.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double truth = f.parameters[i] == "M" ? 2.0 : 3.0;
+    EXPECT_NEAR(f.estimate[i], truth, 0.02 * truth) << f.parameters[i];
+  }
+  const EquationErrorResult r = equation_error_pui(m, p.estimation, "v");
+  ASSERT_TRUE(r.built) << r.note;
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    const double truth = r.parameters[i] == "M" ? 2.0 : 3.0;
+    EXPECT_LE(r.box[static_cast<Eigen::Index>(i)].lower(), truth) << r.parameters[i];
+    EXPECT_GE(r.box[static_cast<Eigen::Index>(i)].upper(), truth) << r.parameters[i];
+  }
+  EXPECT_NE(r.note.find("h_bl"), std::string::npos) << r.note;
+  m.parameter("b")->fixed = false;
+  const EquationErrorFit free_play = equation_error_fit(m, p.estimation, "v");
+  EXPECT_FALSE(free_play.built);
+  EXPECT_NE(free_play.note.find("free parameter \"b\""), std::string::npos) << free_play.note;
 }

@@ -59,6 +59,7 @@ struct EquationErrorRegression {
   Eigen::MatrixXd Phi_mid;
   Eigen::VectorXd Y_mid, residual;
   int rows = 0, window = 0, order = 0;
+  bool from_samples = false;  // sampled signals or prev() evaluated from the measurements at the samples
 };
 /// One regression per window (samples). Never throws for a model it cannot handle.
 /// `noise`: the columns' noise levels when the caller has them (a column missing from it is
@@ -77,6 +78,7 @@ struct EquationErrorFit {
   std::vector<std::string> parameters;
   std::vector<double> estimate;
   double relative_residual = 1;  // ||Y - Phi theta|| / ||Y - mean Y|| (0: exact)
+  bool from_samples = false;     // as EquationErrorRegression::from_samples
 };
 EquationErrorFit equation_error_fit(const ModelFile& model, const Recording& data, const std::string& state, int window = 0,
                                     const ColumnNoise& noise = {});
