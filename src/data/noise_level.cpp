@@ -196,27 +196,43 @@ struct SpectralReading {
 // make; their power spreads over every frequency and can take the AR(1) shape (random plant
 // 5 004 294: a switching model error read as a = 0.9 noise 7.5x the truth), so the shape is not
 // believed and the clipped differences, which drop the bursts, can read the noise.
-SpectralReading from_spectrum(const std::vector<VectorXd>& signals, bool bursts = false) {
+// `quantiser` (q / sqrt(12) of a quantised output, else 0): a busy quantiser's error is white with
+// that RMS, and any AR(1) noise under it (a <= 0.9) puts at least (1 - a) / (1 + a) of its own white
+// density into the top band, and dithers the quantiser once it matters (RMS above q / 2). So when the
+// top band's white floor is no more than the quantiser's, the data hold no noise beyond the
+// quantisation: a shape read lower down is model error's, or the quantisation error of a slow signal
+// (which is coloured and bounded by q / 2), and the level read is the quantiser's, not the shape
+// extrapolated (random plants 5 004 919, 5 005 025: a position loop and a thermal node with quantised
+// outputs, the final model's low-frequency error read as AR(1) noise 2.95x and 2.18x the truth). The
+// pole stays: a slow signal's quantisation error is coloured, and the residual tests whiten by it
+// (without it four clean plants of 5 004 900 - 5 005 199 lost "no physics is missing").
+SpectralReading from_spectrum(const std::vector<VectorXd>& signals, bool bursts = false, double quantiser = 0) {
   WelchSpectrum s = welch_spectrum(signals.front());
   const VectorXd first = s.density;  // what the noise's density cannot exceed (y, or the raw residual)
   for (std::size_t i = 1; i < signals.size(); ++i) s.density = s.density.cwiseMin(welch_spectrum(signals[i]).density);
   SpectralReading out;
+  std::vector<double> top;  // 0.98: median / mean of a 30-dof chi-square
+  for (Index k = 0; k < s.frequency.size(); ++k)
+    if (s.frequency[k] >= 0.5 * (1 - 1.0 / 8)) top.push_back(s.density[k]);
+  const double floor = std::sqrt(0.5 * median(top) / 0.98);
+  const bool quantiser_only = quantiser > 0 && floor <= quantiser;
   const ArBand ar = ar_band(s.frequency, s.density, first);
   if (colour_verified(ar) && !bursts) {
     out.sigma = ar.sigma;
     out.ar_pole = ar.a;
     out.coloured = true;
     out.reason = "AR(1) a = " + num(ar.a, 2) + " fits the spectrum from f = " + num(ar.f_lo, 3) + " to 0.5 cycles/sample";
+    if (quantiser_only) {  // the residual's colour stays, for whitening; its level is the quantiser's
+      out.sigma = quantiser;
+      out.reason += ", but the top band holds no more than the quantiser's white error: its RMS q/sqrt(12), not the shape extrapolated";
+      return out;
+    }
     if (ar.f_lo > colour_gate)
       out.reason += " (three octaves; the " + std::to_string(ar.skipped) + " below hold more than the shape: signal or model error)";
     else if (ar.skipped > 0)
       out.reason += " (" + std::to_string(ar.skipped) + " octave(s) between left out: more power than the shape, signal or model error)";
     return out;
   }
-  std::vector<double> top;  // 0.98: median / mean of a 30-dof chi-square
-  for (Index k = 0; k < s.frequency.size(); ++k)
-    if (s.frequency[k] >= 0.5 * (1 - 1.0 / 8)) top.push_back(s.density[k]);
-  const double floor = std::sqrt(0.5 * median(top) / 0.98);
   double plateau = 1e300;
   int order = 0;
   for (const auto& x : signals) {
@@ -520,7 +536,9 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
     const ResidualReading rr = read_residual(r, simulated, inputs);
     const double dof = static_cast<double>(rr.projected.size() - rr.parameters);
     const bool bursts = burst_ratio(rr.raw) > kBurstRatioLimit;
-    const SpectralReading sp = dof > rr.parameters ? from_spectrum({rr.raw, rr.projected}, bursts) : from_spectrum({rr.raw}, bursts);
+    const double quantiser = q / std::sqrt(12.0);
+    const SpectralReading sp = dof > rr.parameters ? from_spectrum({rr.raw, rr.projected}, bursts, quantiser)
+                                                   : from_spectrum({rr.raw}, bursts, quantiser);
     out.sigma = sp.sigma;
     out.method = sp.coloured ? NoiseMethod::residual_coloured : NoiseMethod::residual_floor;
     out.ar_pole = sp.ar_pole;
@@ -530,7 +548,7 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
       out.reason += "; capped by the projected residual's RMS";
     }
   } else {
-    const SpectralReading sp = from_spectrum({r});
+    const SpectralReading sp = from_spectrum({r}, false, q / std::sqrt(12.0));
     out.sigma = sp.sigma;
     out.method = NoiseMethod::output_spectrum;
     out.ar_pole = sp.ar_pole;

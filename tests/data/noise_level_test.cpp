@@ -206,6 +206,28 @@ TEST(NoiseLevel, QuantisedOutputGivesTheQuantisationFloor) {
   EXPECT_GE(e.sigma, q / std::sqrt(12.0) * (1 - 1e-12));
 }
 
+TEST(NoiseLevel, ColouredNoiseBeforeAQuantiserIsStillReadAsColour) {
+  // AR(1) noise (pole 0.9, RMS 2q) before a quantiser of step q: it dithers the quantiser, whose
+  // error is then white (q^2 / 12) beside it, and the noise puts (1 - a) / (1 + a) of its own white
+  // density into the top band, above the quantiser's. Colour is read and extrapolated; a quantised
+  // output whose top band holds no more than the quantiser's error is read at q / sqrt(12)
+  // (NoiseFloor.AQuantisedOutputsModelErrorIsNotReadAsNoiseBeyondTheQuantiser).
+  const int N = 8192;
+  const VectorXd clean = resonance(multisine(N, 0.001, 0.03, 1, 7), 0.01, 0.3);
+  const double q = rms(clean) / 200;
+  VectorXd noise = white(N, 1.0, 11);
+  for (int k = 1; k < N; ++k) noise[k] = 0.9 * noise[k - 1] + std::sqrt(1 - 0.81) * noise[k];
+  noise *= 2 * q / rms(noise);
+  for (double scale : {1e-6, 1.0}) {
+    VectorXd y(N);
+    for (int k = 0; k < N; ++k) y[k] = scale * q * std::round((clean[k] + noise[k]) / q);
+    const NoiseLevelEstimate e = estimate_noise(y, scale * clean);
+    ASSERT_GT(e.quantisation_step, 0);
+    EXPECT_EQ(e.method, NoiseMethod::residual_coloured) << e.reason;
+    EXPECT_NEAR(e.sigma / rms(y - scale * clean), 1.0, 0.2) << e.reason;
+  }
+}
+
 TEST(NoiseLevel, RepeatedInputGivesTheNoiseFromTheRepeats) {
   // Four periods of a multisine; a model that is plainly wrong does not matter to the repeats.
   const int N = 16384;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sets/data/simulation.hpp"
 #include "sets/diagnosis/diagnosis.hpp"
 #include "sets/examples/random_plants.hpp"
 #include "sets/examples/synthetic_plants.hpp"
@@ -80,5 +81,36 @@ TEST(NoiseFloor, WithoutANamedEffectTheFinalEstimateIsTheNominals) {
   for (std::size_t j = 0; j < d.noise.size(); ++j) {
     EXPECT_EQ(d.noise_final[j].estimate.sigma, d.noise[j].estimate.sigma);
     EXPECT_EQ(d.noise_final[j].model, "nominal");
+  }
+}
+
+TEST(NoiseFloor, AQuantisedOutputsModelErrorIsNotReadAsNoiseBeyondTheQuantiser) {
+  // Random plant 5 004 919 (a sampled PD position loop; the position quantised, the drive's
+  // command with AR(1) noise; Stribeck friction in the truth, named right). The augmented model
+  // below is the diagnosis' own (main d3b9b41), written out as it named it. Its low-frequency error
+  // on the quantised position holds the AR(1) shape from 1/128 to 1/2 cycles/sample and was read as
+  // a = 0.88 noise, 2.95x the truth, although the top band holds no more than the quantiser's own
+  // white error: there is no noise beyond the quantisation to extrapolate. The level read is the
+  // quantiser's; the residual's colour is kept for the residual tests to whiten by.
+  const ModelFile augmented = parse_model(R"({
+    "time": "t_x", "inputs": {"r": "ref_1"}, "intersample": {"r": "zoh"},
+    "parameters": {"da": 0.6043219012804127, "visc": 5.12038227209221, "kf": 0.18090552849317065,
+                   "kp2": 5811.21209430931, "kd7": 167.49182990604342, "Fc": 3.5894378540582346,
+                   "Fs": 0.4352060605106425, "vs": 0.9338830274932476},
+    "states": {"x": "pos", "qd2": 0.0},
+    "sampled": {"nuv": "kp2*(r - x) - kd7*(x - prev(x, 1))/Ts"},
+    "derivatives": {"x": "qd2", "qd2": "(kf*nuv - visc*qd2 - sign(qd2)*(Fc + Fs*exp(-(qd2/vs)^2)))/da"},
+    "outputs": {"x": "pos", "nuv": "u_x"}})");
+  const SyntheticPlant p = random_plant(5004919);
+  for (const Recording* r : {&p.estimation, &p.validation}) {
+    const Simulator s(augmented, *r);
+    const Eigen::MatrixXd simulated = s.simulate(s.parameter_values()).outputs;
+    const auto& ref = r->column("ref_1");
+    const NoiseLevelEstimate e = estimate_noise(s.measured().col(0), simulated.col(0),
+                                                Eigen::Map<const Eigen::VectorXd>(ref.data(), r->rows()));
+    const double truth = r == &p.estimation ? p.noise_sigma[0] : p.noise_sigma_validation[0];
+    ASSERT_GT(e.quantisation_step, 0);
+    EXPECT_NEAR(e.sigma / truth, 1.0, 0.1) << e.reason;
+    EXPECT_NE(e.reason.find("quantiser"), std::string::npos) << e.reason;
   }
 }
