@@ -45,8 +45,9 @@ struct NoiseLevelEstimate {
 /// from 1/32 to 1/2 cycles/sample, or unbroken from 1/16 with more power than the shape below it,
 /// else the white floor of the top 1/8 band or the plateau of
 /// the differences, whichever is lower), capped by the projected residual's RMS; without a model
-/// the same reading of y itself. Never below q/sqrt(12); on a quantised y, colour only when the top
-/// band holds more than the quantiser's white error (white floor > q/sqrt(12)).
+/// the same reading of y itself. Never below q/sqrt(12); on a quantised y an AR(1) shape is
+/// extrapolated only when the top band holds more than the quantiser's white error (white floor >
+/// q/sqrt(12)), else the level is q/sqrt(12) and the shape's pole is kept.
 NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y,
                                   const Eigen::Ref<const Eigen::VectorXd>& simulated = Eigen::VectorXd(),
                                   const Eigen::Ref<const Eigen::MatrixXd>& inputs = Eigen::MatrixXd());
