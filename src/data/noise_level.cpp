@@ -505,6 +505,7 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
   const bool have_inputs = inputs.rows() == N && inputs.cols() > 0;
   out.quantisation_step = lattice_step(y);
   const double q = out.quantisation_step;
+  const double quantiser = q / std::sqrt(12.0);  // the quantisation error's RMS once levels are crossed
   // Quantisation repeats with the signal, so a quantised output's repeat difference is not its noise.
   if (have_inputs && q == 0) {
     const InputRepeats rep = detect_repeats(inputs);
@@ -536,7 +537,6 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
     const ResidualReading rr = read_residual(r, simulated, inputs);
     const double dof = static_cast<double>(rr.projected.size() - rr.parameters);
     const bool bursts = burst_ratio(rr.raw) > kBurstRatioLimit;
-    const double quantiser = q / std::sqrt(12.0);
     const SpectralReading sp = dof > rr.parameters ? from_spectrum({rr.raw, rr.projected}, bursts, quantiser)
                                                    : from_spectrum({rr.raw}, bursts, quantiser);
     out.sigma = sp.sigma;
@@ -548,14 +548,14 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
       out.reason += "; capped by the projected residual's RMS";
     }
   } else {
-    const SpectralReading sp = from_spectrum({r}, false, q / std::sqrt(12.0));
+    const SpectralReading sp = from_spectrum({r}, false, quantiser);
     out.sigma = sp.sigma;
     out.method = NoiseMethod::output_spectrum;
     out.ar_pole = sp.ar_pole;
     out.reason = "spectrum of the output: " + sp.reason;
   }
-  if (out.sigma < q / std::sqrt(12.0)) {
-    out.sigma = q / std::sqrt(12.0);
+  if (out.sigma < quantiser) {
+    out.sigma = quantiser;
     out.reason += "; raised to the quantisation floor q/sqrt(12), q = " + num(q);
   }
   return out;
