@@ -9,20 +9,28 @@ namespace sets {
 
 namespace {
 
-// Misfit removed over the noise's own misfit. Each output's share is counted in units of its own
-// noise, (removed_j / noise_j) averaged over the m outputs, which is the rule on outputs whitened
-// by their noise: removed / noise summed over outputs divided by spread alone lets an output whose
-// noise is large for its spread drown the evidence of a quiet one (random plant 5 003 724: a dead
-// zone removes 31 noise levels' misfit from the measured drive, 0.1 from the noisy position, and
-// failed at 0.57). For one output, or outputs with equal noise for their spread, it is removed / noise.
+// Misfit removed over the noise's own misfit, the larger of two measures, either of which shows a
+// gain the noise cannot give:
+// - per output, each output's share counted in units of its own noise, (removed_j / noise_j)
+//   averaged over the m outputs: the rule on outputs whitened by their noise. Summed by spread alone,
+//   an output whose noise is large for its spread drowns the evidence of a quiet one (random plant
+//   5 003 724: a dead zone removes 31 noise levels' misfit from the measured drive, 0.1 from the
+//   noisy position, and failed at 0.57);
+// - pooled, removed / noise summed over outputs by their spread: the units the calibration
+//   minimises (calibration.hpp). A hypothesis calibrated there can trade a quiet output's fit for a
+//   noisy output's, and per output the quiet one's noise units then outweigh the gain (random plant
+//   5 004 998: a true offset removes 60 % of the misfit, 4.8 noise levels on the noisy output, and
+//   costs the quiet one 9.8 of its own; -2.5 per output, 4.0 pooled: nothing was named).
+// For one output, or outputs with equal noise for their spread, the two are the same number.
 double beyond_noise(const HypothesisEvidence& e) {
+  const double pooled = e.noise_cost > 0 ? (e.cost_null - e.cost) / e.noise_cost : (e.cost_null > e.cost ? 1e300 : 0.0);
   const std::size_t m = e.noise_cost_outputs.size();
   bool per_output = m > 0 && e.cost_null_outputs.size() == m && e.cost_outputs.size() == m;
   for (std::size_t j = 0; per_output && j < m; ++j) per_output = e.noise_cost_outputs[j] > 0;
-  if (!per_output) return e.noise_cost > 0 ? (e.cost_null - e.cost) / e.noise_cost : (e.cost_null > e.cost ? 1e300 : 0.0);
+  if (!per_output) return pooled;
   double sum = 0;
   for (std::size_t j = 0; j < m; ++j) sum += (e.cost_null_outputs[j] - e.cost_outputs[j]) / e.noise_cost_outputs[j];
-  return sum / static_cast<double>(m);
+  return std::max(pooled, sum / static_cast<double>(m));
 }
 
 }  // namespace

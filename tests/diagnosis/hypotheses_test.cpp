@@ -516,6 +516,18 @@ TEST(Hypotheses, DeadZoneSeenOnAQuietOutputBesideANoisyOneIsNamed) {
   expect_named_alone_in_place(5003724, "dead_zone");
 }
 
+// A thermal node with an offset in the case's equation and a dead zone at the heater, measured on
+// two outputs whose noise differs 16-fold for their spread. Calibrated with the offset, the model
+// trades the quiet output's fit for the noisy one's: counted per output in units of its own noise
+// the offset's gain was -2.5 < 1 and the answer was "unexplained" (main 79fb76d); pooled, in the
+// units the calibration minimises, it is 4.0. (Seed 5 004 998: held out in the twentieth range,
+// development since.)
+TEST(Hypotheses, GainTheCalibrationTradesAcrossOutputsStillCounts) {
+  const SyntheticPlant plant = random_plant(5004998);
+  ASSERT_EQ(plant.effects.size(), 2u);
+  EXPECT_TRUE(every_true_effect_named(5004998, true));
+}
+
 // A dead zone at a position loop's drive of 0.7 % of the drive's peak (the drive peaks at each
 // step and spends half the record inside the zone): screened from 2 % of the peak only, its
 // linearised gain was 0.02, it was never refined and a hysteresis of the measured drive was named
