@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "sets/diagnosis/acceptance.hpp"
 #include "sets/diagnosis/diagnosis.hpp"
@@ -112,20 +113,27 @@ TEST(Acceptance, RulesWithoutTheirDataDoNotApply) {
   EXPECT_FALSE(passes(check_rules(e, strict)));
 }
 
+// Evidence on two outputs from each output's misfit before and after, and the noise's own misfit
+// there; the other rules pass.
+HypothesisEvidence two_outputs(std::vector<double> before, std::vector<double> after, std::vector<double> noise) {
+  HypothesisEvidence e = good();
+  e.cost_null = before[0] + before[1];
+  e.cost = after[0] + after[1];
+  e.cost_neutral = e.cost_null;
+  e.noise_cost = noise[0] + noise[1];
+  e.cost_null_outputs = std::move(before);
+  e.cost_outputs = std::move(after);
+  e.noise_cost_outputs = std::move(noise);
+  return e;
+}
+
 // The noise rule counts each output in units of its own noise: an output whose noise is large for
 // its spread does not drown a quiet output's evidence. The costs of random plant 5 003 724 (a dead
 // zone at a loop's drive; the drive measured with 0.35 % noise, the position with 2.8 %): the dead
 // zone removes 0.10 of the position's noise misfit and 31 of the drive's; summed over outputs by
 // their spread it was 0.60 < 1 and the zone was not named.
 TEST(Acceptance, NoiseRuleCountsEachOutputInUnitsOfItsOwnNoise) {
-  HypothesisEvidence e = good();
-  e.cost_null_outputs = {8.78e-4, 3.99e-4};
-  e.cost_outputs = {7.99e-4, 1.49e-5};
-  e.noise_cost_outputs = {7.59e-4, 1.24e-5};
-  e.cost_null = e.cost_null_outputs[0] + e.cost_null_outputs[1];
-  e.cost = e.cost_outputs[0] + e.cost_outputs[1];
-  e.cost_neutral = e.cost_null;
-  e.noise_cost = e.noise_cost_outputs[0] + e.noise_cost_outputs[1];
+  const HypothesisEvidence e = two_outputs({8.78e-4, 3.99e-4}, {7.99e-4, 1.49e-5}, {7.59e-4, 1.24e-5});
   const double per_output = ((8.78e-4 - 7.99e-4) / 7.59e-4 + (3.99e-4 - 1.49e-5) / 1.24e-5) / 2;
   EXPECT_NEAR(rule(check_rules(e), "beyond_noise").value, per_output, 1e-9);
   EXPECT_TRUE(passes(check_rules(e)));
@@ -151,14 +159,7 @@ TEST(Acceptance, NoiseRuleCountsEachOutputInUnitsOfItsOwnNoise) {
 // noisy output, and costs the quiet one 9.8 of its own. Per output it is -2.5, and nothing was
 // named (main 79fb76d); pooled it is 4.0, and it passes.
 TEST(Acceptance, NoiseRulePassesAGainInTheUnitsTheCalibrationMinimises) {
-  HypothesisEvidence e = good();
-  e.cost_null_outputs = {4.2849e-4, 4.56114e-5};
-  e.cost_outputs = {1.03694e-4, 8.64563e-5};
-  e.noise_cost_outputs = {6.73081e-5, 4.15564e-6};
-  e.cost_null = e.cost_null_outputs[0] + e.cost_null_outputs[1];
-  e.cost = e.cost_outputs[0] + e.cost_outputs[1];
-  e.cost_neutral = e.cost_null;
-  e.noise_cost = e.noise_cost_outputs[0] + e.noise_cost_outputs[1];
+  const HypothesisEvidence e = two_outputs({4.2849e-4, 4.56114e-5}, {1.03694e-4, 8.64563e-5}, {6.73081e-5, 4.15564e-6});
   const double per_output = ((4.2849e-4 - 1.03694e-4) / 6.73081e-5 + (4.56114e-5 - 8.64563e-5) / 4.15564e-6) / 2;
   const double pooled = (e.cost_null - e.cost) / e.noise_cost;
   ASSERT_LT(per_output, 0.0);
