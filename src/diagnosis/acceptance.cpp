@@ -44,7 +44,7 @@ std::vector<RuleCheck> check_rules(const HypothesisEvidence& e, const Acceptance
   // On either record: noise fitted on one cannot remove more than the other's own noise misfit there.
   if (e.noise_cost_validation > 0 && std::isfinite(e.cost_validation) && std::isfinite(e.cost_null_validation))
     beyond = std::max(beyond, (e.cost_null_validation - e.cost_validation) / e.noise_cost_validation);
-  out.push_back({"beyond_noise", "removes more squared misfit than the measurement noise alone contains (multiple; each output in units of its noise)",
+  out.push_back({"beyond_noise", "removes more squared misfit than the measurement noise alone contains (multiple; the larger of: each output in units of its own noise, averaged; all outputs pooled by spread)",
                  beyond, r.noise_multiple, true, false});
   const bool neutral = std::isfinite(e.cost_neutral);
   out.push_back({"own_term", "switching the effect off at the calibrated point costs at least this share",

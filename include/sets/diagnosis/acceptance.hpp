@@ -20,8 +20,9 @@ struct HypothesisEvidence {
   double cost_validation = std::numeric_limits<double>::quiet_NaN();
   double noise_cost = 0;    // the misfit the measurement noise alone gives on the estimation record
   /// The same three per output (optional): when given, with every output's noise cost positive,
-  /// the noise rule weighs each output by its own noise (a quiet output's evidence is not drowned
-  /// by a noisy output's noise); one output, or outputs equally noisy for their spread, as above.
+  /// the noise rule also weighs each output by its own noise (a quiet output's evidence is not
+  /// drowned by a noisy output's noise) and takes the larger of that and the sums above; one
+  /// output, or outputs equally noisy for their spread, give the same number both ways.
   std::vector<double> cost_null_outputs, cost_outputs, noise_cost_outputs;
   /// The noise's misfit on the validation record (summed over outputs); given (not NaN) only where a
   /// gain beyond the noise on either record counts: the nested rule, a richer law against its special case (judge_round.cpp).
@@ -32,7 +33,7 @@ struct AcceptanceRules {
   double min_gain = 0.10;             // share of the estimation misfit removed
   double min_validation_gain = 0.05;  // share of the validation misfit removed
   double min_own_term = 0.10;         // share lost when its own term is switched off
-  double noise_multiple = 1.0;        // misfit removed / the noise's own misfit, in noise units per output
+  double noise_multiple = 1.0;        // misfit removed / the noise's own misfit (per output or pooled, the larger)
 };
 
 struct RuleCheck {
