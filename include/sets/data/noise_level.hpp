@@ -39,7 +39,9 @@ struct NoiseLevelEstimate {
 ///   inputs     the model's EXOGENOUS inputs, one column each (a closed loop's reference, never
 ///              a controller output: the noise must be independent of them).
 /// Rule (docs/methods/noise-level.md): a quantised y (every value on a lattice of step q) is never
-/// judged by repeats; repeated stretches of the inputs give the noise directly; otherwise the
+/// judged by repeats; repeated stretches of the inputs give the noise directly (with a model: the
+/// lower of y's and the residual's repeat difference), unless the inputs only nearly repeat (their
+/// repeat difference is mostly their derivative: a phase drift, not noise); otherwise the
 /// residual y - simulated, projected off short FIRs of the simulated output, its square and
 /// cube and the inputs, is read from its Welch spectrum (an AR(1) shape extrapolated when it holds
 /// from 1/32 to 1/2 cycles/sample, or unbroken from 1/16 with more power than the shape below it,
