@@ -59,6 +59,20 @@ VectorXd white(int N, double sigma, unsigned seed) {
 
 double rms(const VectorXd& x) { return std::sqrt((x.array() - x.mean()).square().mean()); }
 
+// A sine of 15.3 samples per period through a resonance, with white noise of 0.4 % of the output:
+// the input nearly repeats at a lag of 46 samples (3 periods, 0.04 rad of phase short).
+struct NearlyPeriodic {
+  VectorXd u, clean, noise;
+};
+NearlyPeriodic nearly_periodic(int N) {
+  NearlyPeriodic c;
+  c.u.resize(N);
+  for (int k = 0; k < N; ++k) c.u[k] = std::sin(2 * M_PI * k / 15.3);
+  c.clean = resonance(c.u, 0.02, 0.3);
+  c.noise = white(N, 4e-3 * rms(c.clean), 11);
+  return c;
+}
+
 }  // namespace
 
 TEST(NoiseLevel, WhiteNoiseOnAFastSampledSignalFromTheOutputAlone) {
@@ -243,16 +257,10 @@ TEST(NoiseLevel, RepeatedInputGivesTheNoiseFromTheRepeats) {
 }
 
 TEST(NoiseLevel, ANearlyPeriodicInputDoesNotTurnItsDriftIntoNoise) {
-  // A sine of 15.3 samples per period: the input nearly repeats at a lag of 46 samples (3
-  // periods, 0.04 rad of phase short), so the repeat difference of the output is mostly signal.
-  // That difference is the input's derivative times the phase short (its share of the difference,
+  // The repeat difference of the output is mostly signal. That difference is the input's derivative times the phase short (its share of the difference,
   // R^2, is near 1): the repeats are not read at all, the residual is (randomised suite,
   // random-800013: 24x when they were).
-  const int N = 4096;
-  VectorXd u(N);
-  for (int k = 0; k < N; ++k) u[k] = std::sin(2 * M_PI * k / 15.3);
-  const VectorXd clean = resonance(u, 0.02, 0.3);
-  const VectorXd noise = white(N, 4e-3 * rms(clean), 11);
+  const auto [u, clean, noise] = nearly_periodic(4096);
   const InputRepeats rep = detect_repeats(u);
   ASSERT_GT(rep.matched, 0);  // the premise: the repeats are found
   EXPECT_GT(sigma_from_repeats(clean + noise, rep), 2 * rms(noise));  // what the repeats alone read
@@ -269,10 +277,7 @@ TEST(NoiseLevel, ANearlyPeriodicInputDoesNotTurnItsDriftIntoNoise) {
 // that floor). The residual's spectrum above the model error gives the noise.
 TEST(NoiseLevel, ANearlyPeriodicInputBesideModelErrorIsReadFromTheResidualNotItsRms) {
   const int N = 4096;
-  VectorXd u(N);
-  for (int k = 0; k < N; ++k) u[k] = std::sin(2 * M_PI * k / 15.3);
-  const VectorXd clean = resonance(u, 0.02, 0.3);
-  const VectorXd noise = white(N, 4e-3 * rms(clean), 11);
+  const auto [u, clean, noise] = nearly_periodic(N);
   VectorXd slow = white(N, 1.0, 12);  // model error: slow, independent of the input
   for (int k = 1; k < N; ++k) slow[k] = 0.995 * slow[k - 1] + 0.1 * slow[k];
   slow *= 5 * rms(noise) / rms(slow);
