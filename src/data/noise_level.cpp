@@ -532,31 +532,34 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
   // Quantisation repeats with the signal, so a quantised output's repeat difference is not its noise.
   if (have_inputs && q == 0) {
     const InputRepeats rep = detect_repeats(inputs);
-    const std::string found = "the inputs repeat with a lag of " + std::to_string(rep.lag) + " samples over " +
-                              std::to_string(rep.matched) + " samples";
-    // An input that only nearly repeats (a sine whose period is no whole number of samples) leaves
-    // the signal's change over the lag in the repeat difference, and the input's own repeat
-    // difference is then its derivative times the phase short: the residual is read instead.
-    // Capping such repeats at the model's projected residual RMS read the model error as noise
-    // (random plant 700 069: 10x the truth, a strong Stribeck law then failing the noise rule).
-    const bool drifts = rep.matched > 0 && drift_share(inputs, rep) > 0.5;
-    if (rep.matched > 0 && !drifts) {
-      out.sigma = sigma_from_repeats(y, rep);
-      out.method = NoiseMethod::repeats;
-      out.reason = found;
-      // The residual's repeat difference drops the part of y's change over the lag that the model
-      // simulates (its response to the inputs' own non-repeat); it and y's are each the noise
-      // plus something independent of it, and the lower is kept.
-      if (have_model) {
-        const double of_residual = sigma_from_repeats(y - simulated, rep);
-        if (of_residual < out.sigma) {
-          out.sigma = of_residual;
-          out.reason += " (read on the model's residual, which drops the signal's change over the lag)";
+    if (rep.matched > 0) {
+      const std::string found = "the inputs repeat with a lag of " + std::to_string(rep.lag) + " samples over " +
+                                std::to_string(rep.matched) + " samples";
+      // An input that only nearly repeats (a sine whose period is no whole number of samples)
+      // leaves the signal's change over the lag in the repeat difference, and the input's own
+      // repeat difference is then its derivative times the phase short: the residual is read
+      // instead. Capping such repeats at the model's projected residual RMS read the model error
+      // as noise (random plant 700 069: 10x the truth, a strong Stribeck law then failing the
+      // noise rule).
+      if (drift_share(inputs, rep) > 0.5) {
+        out.reason = found + ", but their difference is a phase drift (explained by their derivative), not noise; ";
+      } else {
+        out.sigma = sigma_from_repeats(y, rep);
+        out.method = NoiseMethod::repeats;
+        out.reason = found;
+        // The residual's repeat difference drops the part of y's change over the lag that the
+        // model simulates (its response to the inputs' own non-repeat); it and y's are each the
+        // noise plus something independent of it, and the lower is kept.
+        if (have_model) {
+          const double of_residual = sigma_from_repeats(y - simulated, rep);
+          if (of_residual < out.sigma) {
+            out.sigma = of_residual;
+            out.reason += " (read on the model's residual, which drops the signal's change over the lag)";
+          }
         }
+        return out;
       }
-      return out;
     }
-    if (drifts) out.reason = found + ", but their difference is a phase drift (explained by their derivative), not noise; ";
   }
   const VectorXd r = have_model ? VectorXd(y - simulated) : VectorXd(y);
   if (N < 64) {  // too short for a spectrum
@@ -583,7 +586,7 @@ NoiseLevelEstimate estimate_noise(const Eigen::Ref<const Eigen::VectorXd>& y, co
     out.sigma = sp.sigma;
     out.method = NoiseMethod::output_spectrum;
     out.ar_pole = sp.ar_pole;
-    out.reason = "spectrum of the output: " + sp.reason;
+    out.reason += "spectrum of the output: " + sp.reason;
   }
   if (out.sigma < quantiser) {
     out.sigma = quantiser;

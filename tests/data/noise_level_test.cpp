@@ -257,9 +257,10 @@ TEST(NoiseLevel, RepeatedInputGivesTheNoiseFromTheRepeats) {
 }
 
 TEST(NoiseLevel, ANearlyPeriodicInputDoesNotTurnItsDriftIntoNoise) {
-  // The repeat difference of the output is mostly signal. That difference is the input's derivative times the phase short (its share of the difference,
-  // R^2, is near 1): the repeats are not read at all, the residual is (randomised suite,
-  // random-800013: 24x when they were).
+  // The repeat difference of the output is mostly signal. The input's own repeat difference is
+  // its derivative times the phase short (the derivative's share of it, R^2, is near 1): the
+  // repeats are not read at all, the residual is (randomised suite, random-800013: 24x when they
+  // were).
   const auto [u, clean, noise] = nearly_periodic(4096);
   const InputRepeats rep = detect_repeats(u);
   ASSERT_GT(rep.matched, 0);  // the premise: the repeats are found
