@@ -49,7 +49,8 @@ TEST(NoiseFloor, WithoutAValidationRecordTheEstimationRecordIsUsed) {
 // A concealed effect left in the nominal's residual misleads the floor read from it (here a
 // hysteresis the AR(1) shape mistakes for coloured noise, 26x the truth); the augmented model,
 // which names and fits it, leaves the noise alone: the final estimate is within a factor 2. The
-// rules keep the nominal's floor (d.noise), the report gives both, each saying whose residual it is.
+// rules keep the nominal's floor (d.noise); the final model's residual tests use the final
+// estimate; the report gives both, each saying whose residual it is.
 TEST(NoiseFloor, TheFinalEstimateIsReadFromTheAugmentedModelsResidual) {
   const SyntheticPlant p = random_plant(800029);  // development seed (docs/reproduction/diagnosis.md)
   DiagnosisOptions o;
@@ -65,6 +66,15 @@ TEST(NoiseFloor, TheFinalEstimateIsReadFromTheAugmentedModelsResidual) {
   EXPECT_EQ(d.noise_final[0].model, "augmented");
   EXPECT_GT(d.noise_final[0].estimate.sigma, 0.5 * truth) << d.noise_final[0].estimate.reason;
   EXPECT_LT(d.noise_final[0].estimate.sigma, 2.0 * truth) << d.noise_final[0].estimate.reason;
+  // The augmented model is tested against the noise its own residual leaves, as the nominal is
+  // against its own: against the nominal's inflated floor any model would be "within the noise".
+  ASSERT_EQ(d.final_tests.bound.size(), 1u);
+  ASSERT_EQ(d.nominal_tests.bound.size(), 1u);
+  const double c_N = noise_bound_factor(p.estimation.rows());
+  EXPECT_NEAR(d.final_tests.bound[0], c_N * d.noise_final[0].estimate.sigma, 1e-9 * d.final_tests.bound[0]);
+  EXPECT_NEAR(d.nominal_tests.bound[0], c_N * d.noise[0].estimate.sigma, 1e-9 * d.nominal_tests.bound[0]);
+  EXPECT_EQ(d.final_tests.whitened_by.at(0), d.noise_final[0].estimate.ar_pole);
+  EXPECT_NE(d.verdict.find("noise read from"), std::string::npos) << d.verdict;
   const std::string json = diagnosis_json(d, "");
   EXPECT_NE(json.find("\"noise_level_final\""), std::string::npos);
   EXPECT_NE(json.find("\"model\": \"augmented\""), std::string::npos);

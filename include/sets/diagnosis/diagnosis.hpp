@@ -180,7 +180,7 @@ struct Diagnosis {
   std::string nominal_note;              // how the nominal was calibrated (starts, minima, stalls)
   bool nominal_far = false;              // the nominal could not be brought near the data
   ResidualTests nominal_tests;           // the calibrated nominal's residual tests
-  ResidualTests final_tests;             // the final (augmented) model's
+  ResidualTests final_tests;             // the final (augmented) model's, against noise_final
   std::vector<double> noise_sigma;       // estimated noise level per output (measurement units)
   std::string noise_note;                // how it was estimated
   int hypotheses_screened = 0, hypotheses_refined = 0;
@@ -190,7 +190,8 @@ struct Diagnosis {
                                          // floor the rules use (taken before augmentation)
   std::vector<OutputNoise> noise_final;  // per output, from the final model's residual (the augmented
                                          // one when effects were named, else the nominal's): what the
-                                         // final model leaves as noise; reported, not used by the rules
+                                         // final model leaves as noise; the final residual tests use it,
+                                         // the rules do not
   DataHypothesis data_hypothesis;        // a finding about the data (not physics)
   // Signals for plots.
   Eigen::VectorXd time_estimation, time_validation;
