@@ -140,11 +140,10 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // white and too low (5 005 868: 0.19x).
   d.final_tests = d.nominal_tests;
   if (!d.effects.empty()) {
-    std::vector<double> sigma, pole;
-    for (const auto& n : d.noise_final) sigma.push_back(n.estimate.sigma), pole.push_back(n.estimate.ar_pole);
+    const NoiseFloor left = levels_of(d.noise_final);
     Simulator aug(d.augmented, est, {opt.final_substeps});
     const Eigen::VectorXd p = aug.parameter_values();
-    d.final_tests = test_residual(aug, p, aug.simulate(p), sigma, pole);
+    d.final_tests = test_residual(aug, p, aug.simulate(p), left.sigma, left.pole);
   }
   conclude(d);
   say("done");

@@ -54,15 +54,20 @@ std::vector<double> noise_costs_on(const Eigen::MatrixXd& Y, const std::vector<d
 
 }  // namespace
 
+NoiseFloor levels_of(const std::vector<OutputNoise>& readings) {
+  NoiseFloor f;
+  for (const auto& n : readings) {
+    f.sigma.push_back(n.estimate.sigma);
+    f.pole.push_back(n.estimate.ar_pole);
+  }
+  return f;
+}
+
 NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d) {
   c.say("estimating the noise level of every output");
   const Eigen::MatrixXd& Y = c.exact.measured();
   d.noise = read_noise(c, d.outputs, nominal.simulation.outputs, nominal.validation_outputs, "nominal");
-  NoiseFloor f;
-  for (const auto& n : d.noise) {
-    f.sigma.push_back(n.estimate.sigma);
-    f.pole.push_back(n.estimate.ar_pole);
-  }
+  NoiseFloor f = levels_of(d.noise);
   f.costs = noise_costs_on(Y, f.sigma);
   for (double x : f.costs) f.cost += x;
   if (c.exact_validation) {

@@ -131,6 +131,9 @@ struct NoiseFloor {
   double cost_validation = std::numeric_limits<double>::quiet_NaN();  // the same on the validation record (NaN: none)
   std::string note;           // how sigma was estimated
 };
+/// The level and the verified AR(1) pole of each output's reading (the costs left empty): what
+/// the residual tests take.
+NoiseFloor levels_of(const std::vector<OutputNoise>& readings);
 /// The noise level of every output from the calibrated nominal's residual (and the inputs'
 /// repeats), on every record, the most reliable method's value used for all; fills d.noise.
 NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d);

@@ -67,7 +67,8 @@ TEST(NoiseFloor, TheFinalEstimateIsReadFromTheAugmentedModelsResidual) {
   EXPECT_GT(d.noise_final[0].estimate.sigma, 0.5 * truth) << d.noise_final[0].estimate.reason;
   EXPECT_LT(d.noise_final[0].estimate.sigma, 2.0 * truth) << d.noise_final[0].estimate.reason;
   // The augmented model is tested against the noise its own residual leaves, as the nominal is
-  // against its own: against the nominal's inflated floor any model would be "within the noise".
+  // against its own: the nominal's inflated floor gives a bound that a model still missing an
+  // effect can pass.
   ASSERT_EQ(d.final_tests.bound.size(), 1u);
   ASSERT_EQ(d.nominal_tests.bound.size(), 1u);
   const double c_N = noise_bound_factor(p.estimation.rows());
