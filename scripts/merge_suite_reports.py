@@ -4,7 +4,7 @@ campaign run one after the other or side by side) into the suite's summary figur
 `suite_report` (src/examples/diagnosis_suite.cpp) computes them for one run: one-effect plants
 first named right, two-effect plants both named, invented effects on clean plants, true values
 inside the bounded-error interval and the estimate, the noise ratio's distribution, the confusion
-matrix and per-effect precision and recall. The "meet" figure is not in the table and is left out.
+matrix, per-effect precision and recall, and the headline figures per plant family. The "meet" figure is not in the table and is left out.
 The declared lenient figures (right, or the truth among the named effects' equally good
 alternatives) and the alternatives per named effect come from the "Equally good on these data"
 table (reports without it: no alternatives).
@@ -65,6 +65,7 @@ def main(paths):
     ratios, ratios_nominal, misses = [], [], []
     confusion = defaultdict(Counter)
     tp, fp, fn = Counter(), Counter(), Counter()
+    family = defaultdict(Counter)  # per family: one, one_right, two, two_both, clean, invented
     alike = equally_good(paths)
     one_lenient = two_lenient = named_effects = listed = plants_listing = 0
     for path, c in rows(paths):
@@ -86,20 +87,27 @@ def main(paths):
         named_effects += len(named)
         listed += sum(k for k, _ in mine.values())
         plants_listing += bool(mine)
+        fam = family[c[1]]
         if not truth:
             clean += 1
             invented += bool(named)
+            fam["clean"] += 1
+            fam["invented"] += bool(named)
             nothing += answer == "nothing_missing"
         elif len(truth) == 1:
             one += 1
             right = c[5] == "yes"
             one_right += right
+            fam["one"] += 1
+            fam["one_right"] += right
             one_lenient += right or truth[0] in mine.get(1, (0, set()))[1]
             if not right:
                 misses.append(f"{c[0]}: {c[2]} -> named {c[3]} ({answer})")
         else:
             two += 1
             two_both += c[6] == "yes"
+            fam["two"] += 1
+            fam["two_both"] += c[6] == "yes"
             two_lenient += all(t in named or t in among for t in truth)
             two_one += any(t in named for t in truth)
         if len(truth) <= 1:
@@ -141,6 +149,11 @@ def main(paths):
     print("\nPer effect (all plants):\n\n| effect | true | named right | precision | recall |\n| --- | --- | --- | --- | --- |")
     for e in sorted(set(tp) | set(fp) | set(fn)):
         print(f"| {e} | {tp[e] + fn[e]} | {tp[e]} | {pct(tp[e], tp[e] + fp[e])} | {pct(tp[e], tp[e] + fn[e])} |")
+    print("\nPer family (the headline figures of each plant family):\n\n| family | one-effect, first named right | "
+          "two-effect, both named | clean, invented effect |\n| --- | --- | --- | --- |")
+    for name in sorted(family):
+        f = family[name]
+        print(f"| {name} | {pct(f['one_right'], f['one'])} | {pct(f['two_both'], f['two'])} | {pct(f['invented'], f['clean'])} |")
     print("\nOne-effect plants not first named right:\n")
     for m in misses:
         print(f"- {m}")

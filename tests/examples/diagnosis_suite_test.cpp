@@ -147,6 +147,30 @@ TEST(SuiteReport, LenientFigureCountsTheTruthAmongEquallyGoodAlternativesBesideT
             std::string::npos) << report;
 }
 
+// The per-family table counts each plant in its own family's row with the same rules as the
+// headline (first named right, both named, an invented effect on a clean plant), so that a family
+// where the rules are weak shows beside the totals.
+TEST(SuiteReport, PerFamilyTableCountsEachPlantInItsFamilyByTheHeadlineRules) {
+  auto in = [](SuitePlantResult r, const std::string& family) {
+    r.family = family;
+    return r;
+  };
+  const std::vector<SuitePlantResult> plants{
+      in(scored("random-1", {nested_law("dead_zone", {}, -1)}, {"dead_zone"}), "position_loop"),
+      in(scored("random-2", {nested_law("coulomb_friction", {}, -1)}, {"dead_zone"}), "position_loop"),
+      in(scored("random-3", {}, {"constant_offset"}), "position_loop"),
+      in(scored("random-4", {nested_law("dead_zone", {}, -1), nested_law("constant_offset", {}, -1)}, {"constant_offset", "dead_zone"}),
+         "tanks"),
+      in(scored("random-5", {}, {}), "tanks")};
+  const std::string report = suite_report(plants, false);
+  EXPECT_NE(report.find("| position_loop | 1 of 2 (50.0 %) | 0 of 0 | 1 of 1 (100.0 %) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| tanks | 0 of 0 | 1 of 1 (100.0 %) | 0 of 1 (0.0 %) |"), std::string::npos) << report;
+  // The totals are the families' sums.
+  EXPECT_NE(report.find("first named right: 1 of 2"), std::string::npos) << report;
+  // Plants without a family (the fixed suite's) get no table.
+  EXPECT_EQ(suite_report({scored("fixed-1", {}, {})}, false).find("Per family"), std::string::npos);
+}
+
 // Random plant 5 004 294 (development since the seventeenth held-out run): a thermal node at 6
 // samples per time scale, constant offset + hysteresis, white noise. The reversals' model error
 // spreads over every frequency like AR(1) noise of pole 0.9; the noise was read 7.5x too high,

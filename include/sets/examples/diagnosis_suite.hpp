@@ -4,8 +4,8 @@
 // first-named right on one-effect plants, both named on two-effect plants (each also leniently:
 // or the truth among the named effect's equally good alternatives, with the number of alternatives
 // per named effect beside it), invented effects on
-// clean plants, the confusion matrix, per-effect precision and recall, and whether the true
-// parameter values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
+// clean plants, the confusion matrix, per-effect precision and recall, the headline figures per
+// plant family, and whether the true parameter values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
 
 #include <functional>
 #include <string>
@@ -64,7 +64,8 @@ std::vector<SuitePlantResult> run_fixed_suite(const std::string& plant = "", con
 SuitePlantResult run_suite_plant(const SyntheticPlant& plant, const DiagnosisOptions& options);
 
 /// Markdown: the per-plant table, the summary figures, the confusion matrix (one-effect and clean
-/// plants: true effect against first named), per-effect precision and recall, interval coverage.
+/// plants: true effect against first named), per-effect precision and recall, the headline figures
+/// per plant family, interval coverage.
 std::string suite_report(const std::vector<SuitePlantResult>& results, bool per_plant_table = true);
 
 }  // namespace sets
