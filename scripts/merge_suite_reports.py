@@ -4,7 +4,8 @@ campaign run one after the other or side by side) into the suite's summary figur
 `suite_report` (src/examples/diagnosis_suite.cpp) computes them for one run: one-effect plants
 first named right, two-effect plants both named, invented effects on clean plants, true values
 inside the bounded-error interval and the estimate, the noise ratio's distribution, the confusion
-matrix, per-effect precision and recall, and the headline figures per plant family. The "meet" figure is not in the table and is left out.
+matrix, per-effect precision and recall, and the headline figures per plant family. The "meet"
+figure is not in the table and is left out.
 The declared lenient figures (right, or the truth among the named effects' equally good
 alternatives) and the alternatives per named effect come from the "Equally good on these data"
 table (reports without it: no alternatives).

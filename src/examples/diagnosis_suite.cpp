@@ -184,13 +184,13 @@ std::string coverage_misses(const std::vector<SuitePlantResult>& results) {
   return o.str();
 }
 
-// The counts behind the suite's figures, in one pass over the plants.
 // The headline figures of one plant family (one- and two-mass mechanics, motors, ...): where the
 // rules are weak shows here, not in the suite's totals.
 struct FamilyTally {
   int one = 0, one_right = 0, two = 0, two_both = 0, clean = 0, clean_invented = 0;
 };
 
+// The counts behind the suite's figures, in one pass over the plants.
 struct SuiteTally {
   int one = 0, one_right = 0, two = 0, two_both = 0, two_one = 0, clean = 0, clean_invented = 0, clean_nothing = 0, errors = 0;
   int one_right_alike = 0, two_both_alike = 0, named = 0, alike = 0, plants_alike = 0;  // the lenient figures

@@ -3,9 +3,9 @@
 // (synthetic_plants.hpp) and the randomised one (random_plants.hpp), scored as in issue 14:
 // first-named right on one-effect plants, both named on two-effect plants (each also leniently:
 // or the truth among the named effect's equally good alternatives, with the number of alternatives
-// per named effect beside it), invented effects on
-// clean plants, the confusion matrix, per-effect precision and recall, the headline figures per
-// plant family, and whether the true parameter values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
+// per named effect beside it), invented effects on clean plants, the confusion matrix, per-effect
+// precision and recall, the headline figures per plant family, and whether the true parameter
+// values lie in the reported bounded-error intervals. `sets-diagnose --suite ...`.
 
 #include <functional>
 #include <string>
