@@ -231,6 +231,17 @@ Effect actuator_effect(Rng& r, const Build& b, const std::string& name, const Sc
     sampled.emplace_back(s, expr);
     for (auto& e : eqs) e.body = replace_word(e.body, a, s);
   };
+  if (name == "dead_zone") {
+    // While the input stays on one side of the band, u - dz(u) is the constant d or -d: the law is
+    // a constant offset at the input on those data (random plants 5 006 110, 942, 996: named so).
+    // The offset starts at -d, 0 or +d (level 0, 1/2, 1).
+    E.special_case = {"constant_offset"};
+    E.apply_special_case = [=](double k, double level, auto& eqs, auto& ps) {
+      const double d = amax * k / (1 + k);
+      const std::string off = new_free_param(*names, ps, {"off", "bias"}, (2 * level - 1) * d);
+      for (auto& e : eqs) e.body = replace_word(e.body, a, "(" + a + " + " + off + ")");
+    };
+  }
   return E;
 }
 

@@ -105,3 +105,44 @@ TEST(RandomPlants, RicherFrictionLawIsMeasuredAgainstItsNestedSpecialCase) {
   EXPECT_TRUE(plain.special_case.empty());
   EXPECT_EQ(plain.detectability_vs_special_case, -1.0);
 }
+
+// A dead zone is measured against a constant offset at its input, what it is on data whose input
+// stays on one side of the band (u - dz(u) = d or -d throughout). Forced development seeds of two
+// families whose input is a recorded column: where the estimation record stays on one side the
+// offset stands in for the law within the noise; where it spends a fifth of its samples inside the
+// band, it cannot. An input that jumps across the band without a sample inside is neither: the
+// offset's sign would have to follow the input's (motor 700 004: 20.7 noise levels).
+TEST(RandomPlants, DeadZoneIsMeasuredAgainstAnOffsetAtItsInput) {
+  RandomPlantOptions o;
+  o.effects = 1;
+  o.effect = "dead_zone";
+  int one_sided = 0, often = 0;
+  for (const char* family : {"tanks", "motor"})
+    for (unsigned seed = 700000; seed < 700006; ++seed) {
+      o.family = family;
+      const SyntheticPlant p = random_plant(seed, o);
+      const TrueEffect& e = p.effects.at(0);
+      EXPECT_EQ(e.special_case, std::vector<std::string>{"constant_offset"});
+      ASSERT_GE(e.detectability_vs_special_case, 0.0) << family << " " << seed;
+      EXPECT_LE(e.detectability_vs_special_case, e.detectability) << family << " " << seed;
+      std::string column;
+      for (const auto& [symbol, col] : p.truth.inputs)
+        if (symbol == e.where) column = col;
+      if (column.empty()) continue;  // a sampled signal, not a recorded input
+      const auto& u = p.estimation.column(column);
+      const double d = e.values.at(0).second;
+      const double inside = static_cast<double>(std::count_if(u.begin(), u.end(), [&](double x) { return std::abs(x) < d; })) /
+                            static_cast<double>(u.size());
+      const bool one_side = std::all_of(u.begin(), u.end(), [&](double x) { return x > d; }) ||
+                            std::all_of(u.begin(), u.end(), [&](double x) { return x < -d; });
+      if (one_side) {
+        ++one_sided;
+        EXPECT_LT(e.detectability_vs_special_case, kDetectableInNoiseLevels) << family << " " << seed;
+      } else if (inside >= 0.2) {
+        ++often;
+        EXPECT_GE(e.detectability_vs_special_case, kDetectableInNoiseLevels) << family << " " << seed;
+      }
+    }
+  EXPECT_GT(one_sided, 0);
+  EXPECT_GT(often, 0);
+}

@@ -24,7 +24,9 @@ struct TrueEffect {
   double detectability = 0;  // the nominal structure without it, calibrated on the noise-free
                              // outputs: RMS miss / noise sigma (largest over outputs; 0: not measured)
   /// A richer law's nested special case (stribeck_friction: {coulomb_friction};
-  /// asymmetric_friction: {coulomb_friction, constant_offset}); empty for other effects.
+  /// asymmetric_friction: {coulomb_friction, constant_offset}), or the simpler law it equals on
+  /// data that never reach its nonlinearity (dead_zone: {constant_offset} at the input, while the
+  /// input stays on one side of the band); empty for other effects.
   std::vector<std::string> special_case;
   /// The truth with the law replaced by its special case (its parameters free, the plant's own
   /// free as for `detectability`), calibrated on the noise-free outputs: RMS miss / noise sigma,
