@@ -1,10 +1,11 @@
-// The fixed-seed CI slice of the randomised plant suite (issue 14): the first three plants of the
-// development seed range (3 000 000 on, looked at while the rules were chosen; the reported
-// figures come from the held-out range 5 000 000 on, docs/reproduction/diagnosis.md). One test
-// per plant, so that each stays short. A slice this small says nothing about rates (those are the
-// benchmark's: `sets-diagnose --suite random`); it asserts what must hold on every plant: the
-// diagnosis completes, a clean plant gets no invented effect, and a concealed effect (drawn strong
-// enough to matter) is never answered with "no physics is missing".
+// The fixed-seed CI slice of the randomised plant suite (issue 14: a fixed 40-plant subset in CI):
+// the first forty plants of the development seed range (3 000 000 on, looked at while the rules
+// were chosen; the reported figures come from the held-out ranges 5 000 000 on,
+// docs/reproduction/diagnosis.md). One test per plant, so that each stays short and ctest runs
+// them side by side. A slice this small says nothing about rates (those are the benchmark's:
+// `sets-diagnose --suite random`); it asserts what must hold on every plant: the diagnosis
+// completes, a clean plant gets no invented effect, and a concealed effect (drawn strong enough to
+// matter) is never answered with "no physics is missing".
 
 #include <gtest/gtest.h>
 
@@ -34,11 +35,13 @@ TEST_P(RandomSuiteSlice, CompletesInventsNothingAndMissesNoConcealedEffect) {
   for (double q : r.noise_ratio) EXPECT_GT(q, 0.0);
 }
 
-// Seed 3000003, the fourth, is left out while GLPK can abort the process: an internal assertion
-// (spxprim.c "teta_lim >= 0.0") in an LP of the tv_bound jump search that the varying-parameter
-// stage calls, depending on the run (the search has a 10 s guard); no error hook turns it into an
-// exception yet (GUIDE: known traps).
+// The first three run under the sanitizers too; the other 37 (SliceOfForty) only in the Release
+// suite: under ASan each full diagnosis takes several times as long (the `asan` test preset leaves
+// them out, docs/reliability.md). Seed 3 000 003 once aborted inside GLPK (spxprim.c "teta_lim >=
+// 0.0", an LP of the varying-parameter stage) before GLPK's error hook turned such an abort into
+// an exception, which that stage catches.
 INSTANTIATE_TEST_SUITE_P(DevelopmentSeeds, RandomSuiteSlice, ::testing::Range(3000000u, 3000003u));
+INSTANTIATE_TEST_SUITE_P(SliceOfForty, RandomSuiteSlice, ::testing::Range(3000003u, 3000040u));
 
 // The report lists every true value outside its bounded-error interval, its linearised estimate or
 // their meet, with the sets involved and which one missed, and only those (scored results made by
