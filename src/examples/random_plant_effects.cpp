@@ -205,11 +205,12 @@ Effect actuator_effect(Rng& r, const Build& b, const std::string& name, const Sc
   E.where = a;
   const double amax = std::max(sc.maxabs.at(a), 1e-300), arange = std::max(sc.range.at(a), 1e-300);
   const double Ts = b.Ts, period = b.period;
+  const auto dead_band = [amax](double k) { return amax * k / (1 + k); };  // the law and its stand-in
   E.apply = [=](double k, auto& eqs, auto& sampled, auto&, auto&, auto& ps, auto& values) {
     const std::string s = (*names)({a + "_eff", a + "_act", "ua"});
     std::string expr;
     if (name == "dead_zone") {
-      const double d = amax * k / (1 + k);
+      const double d = dead_band(k);
       const std::string p = new_fixed_param(*names, ps, {"d", "dz", "deadband"}, d);
       expr = a + " - min(max(" + a + ", -" + p + "), " + p + ")";
       values = {{"d", d}};
@@ -237,7 +238,7 @@ Effect actuator_effect(Rng& r, const Build& b, const std::string& name, const Sc
     // The offset starts at -d, 0 or +d (level 0, 1/2, 1).
     E.special_case = {"constant_offset"};
     E.apply_special_case = [=](double k, double level, auto& eqs, auto& ps) {
-      const double d = amax * k / (1 + k);
+      const double d = dead_band(k);
       const std::string off = new_free_param(*names, ps, {"off", "bias"}, (2 * level - 1) * d);
       for (auto& e : eqs) e.body = replace_word(e.body, a, "(" + a + " + " + off + ")");
     };
