@@ -152,10 +152,10 @@ struct Effect {
                      std::vector<ModelParameter>&, std::vector<std::pair<std::string, double>>& values)> apply;
   // A richer law's nested special case (Stribeck friction: Coulomb friction; asymmetric friction:
   // Coulomb friction + a constant offset), or the simpler law it equals on data that never reach
-  // its nonlinearity (dead zone: a constant offset at the input while the input stays on one
-  // side of the band); empty for other effects: its catalogue effects, and how to put it into the truth in the
-  // law's place, its parameters free, starting at a level in [0, 1] between the ends of the law at
-  // knob k.
+  // its nonlinearity (dead zone: a constant offset at the input while the input stays on one side
+  // of the band); empty for other effects: its catalogue effects, and how to put it into the truth
+  // in the law's place, its parameters free, starting at a level in [0, 1] between the ends of the
+  // law at knob k.
   std::vector<std::string> special_case;
   std::function<void(double knob, double level, std::vector<Eq>&, std::vector<ModelParameter>&)> apply_special_case;
 };
