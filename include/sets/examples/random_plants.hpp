@@ -14,9 +14,10 @@
 // Coulomb friction; asymmetric friction: Coulomb friction + a constant offset), and a dead zone
 // against a constant offset at its input (what it is while the input stays on one side of the
 // band; the name `special_case` covers both): the truth with the law replaced by it, its
-// parameters and the plant's own free, calibrated on the noise-free outputs, RMS miss / noise level (TrueEffect::detectability_vs_special_case). Below the same 2
-// noise levels the plant is a plant of the special case within the noise. It is a record, measured
-// after every draw of the plant: it changes no plant drawn. The suite report prints it in the
+// parameters and the plant's own free, calibrated on the noise-free outputs, RMS miss / noise
+// level (TrueEffect::detectability_vs_special_case). Below the same 2 noise levels the plant is a
+// plant of the special case within the noise. It is a record, measured after every draw of the
+// plant: it changes no plant drawn. The suite report prints it in the
 // truth column ("vs coulomb_friction 1.37 sigma").
 // See docs/reproduction/diagnosis.md.
 
