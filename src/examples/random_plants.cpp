@@ -356,11 +356,11 @@ bool detectable(const Build& b, const Truth& truth_of, const ModelFile& truth, c
   return true;
 }
 
-// Each richer law against its nested special case, the same measure as `detectable` (a record of
-// the plant drawn, never a condition of the draw): -1 for an effect without one or where every
-// calibration fails. Calibrations end in local optima: the best of three starts (the special case
-// at either end of the law and midway) and of the plant without the law (`detectability`: Fc = 0,
-// no offset, a point of the special case).
+// Each richer law against its nested special case, the same measure as `detectable` (on the
+// estimation record, as that is): -1 for an effect without one or where every calibration fails.
+// Calibrations end in local optima: the best of three starts (the special case at either end of
+// the law and midway) and of the plant without the law (`detectability`: Fc = 0, no offset, a
+// point of the special case).
 std::vector<double> detectability_vs_special_cases(const Build& b, const Truth& truth_of, const ModelFile& truth,
                                                    const Recording& est, const Noise& noise, const std::vector<double>& knobs,
                                                    const std::vector<double>& detectability) {
@@ -376,6 +376,12 @@ std::vector<double> detectability_vs_special_cases(const Build& b, const Truth& 
     }
   }
   return out;
+}
+
+// A law within the noise of its special case is that special case on these data (-1: no special
+// case, or no calibration to measure it by).
+bool distinct_from_special_cases(const std::vector<double>& vs_special) {
+  return std::none_of(vs_special.begin(), vs_special.end(), [](double v) { return v >= 0 && v < kDetectableInNoiseLevels; });
 }
 
 // The measured outputs: the truth simulated on each record plus the drawn noise; sigma and
@@ -471,8 +477,10 @@ SyntheticPlant random_plant(unsigned seed, const RandomPlantOptions& options) {
     p.family = b.family;
     p.name = "random-" + std::to_string(seed);
     p.nominal = nominal_of(r, b, rec.time_col);
-    // After every draw of this plant: measuring takes names from r but changes nothing drawn.
+    // After every other draw of this plant: measuring takes names from r, so a plant whose laws
+    // all pass is the plant drawn before the measure could reject one.
     const std::vector<double> vs_special = detectability_vs_special_cases(b, truth_of, truth, rec.est, noise, knobs, detectability);
+    if (options.distinct_from_special_cases && !distinct_from_special_cases(vs_special)) continue;
     p.nominal.name = "nominal " + b.family + " model (random plant " + std::to_string(seed) + ")";
     p.truth = truth;
     p.truth.name = "truth of random plant " + std::to_string(seed);

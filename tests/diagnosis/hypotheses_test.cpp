@@ -188,11 +188,14 @@ TEST(Hypotheses, MirrorSensorCalibratedFromTheFileValuesIsRefinedWhateverItsScre
 namespace {
 
 // A forced one-effect random plant diagnosed as sets-diagnose does (default options, one thread,
-// one round), with its progress lines.
-Diagnosis diagnose_forced(unsigned seed, const std::string& effect, std::vector<std::string>* lines = nullptr) {
+// one round), with its progress lines. `distinct` false: the plant drawn before the generator
+// drew a law within the noise of its special case again.
+Diagnosis diagnose_forced(unsigned seed, const std::string& effect, std::vector<std::string>* lines = nullptr,
+                          bool distinct = true) {
   RandomPlantOptions ro;
   ro.effect = effect;
   ro.effects = 1;
+  ro.distinct_from_special_cases = distinct;
   const SyntheticPlant p = random_plant(seed, ro);
   DiagnosisOptions o;
   o.threads = 1;
@@ -224,10 +227,11 @@ double refined_misfit(const std::vector<std::string>& lines, const std::string& 
 // Stribeck friction contains Coulomb friction (Fs = 0): refined beside it, it must be refined
 // from Coulomb's optimum too, so that it never fits worse than the law it contains. On main
 // b36761a the Stribeck law of this plant ended at 4.4 % of the misfit, Coulomb at 4.3 %. (Seed
-// 700 067: development, docs/reproduction/diagnosis.md, effect forced.)
+// 700 067: development, docs/reproduction/diagnosis.md, effect forced; its Stribeck part within
+// the noise of Coulomb friction, so drawn again by the generator since 2026-11-29: the plant before.)
 TEST(Hypotheses, RicherLawIsRefinedFromItsSpecialCasesOptimumAndFitsAtLeastAsWell) {
   std::vector<std::string> lines;
-  diagnose_forced(700067, "stribeck_friction", &lines);
+  diagnose_forced(700067, "stribeck_friction", &lines, false);
   const double coulomb = refined_misfit(lines, "coulomb_friction (vel)");
   const double stribeck = refined_misfit(lines, "stribeck_friction (vel)");
   ASSERT_TRUE(std::isfinite(coulomb));
@@ -457,8 +461,8 @@ TEST(Hypotheses, DelayThatEndsWorseThanTheModelIsRefinedFromTheFilesValues) {
 
 // Random plant `seed` diagnosed whole (one thread), with or without the shortlist's slots: whether
 // every true effect is named at its true place.
-bool every_true_effect_named(unsigned seed, bool slots) {
-  const SyntheticPlant plant = random_plant(seed);
+bool every_true_effect_named(unsigned seed, bool slots, const RandomPlantOptions& ro = {}) {
+  const SyntheticPlant plant = random_plant(seed, ro);
   DiagnosisOptions o;
   o.threads = 1;
   o.shortlist_slots = slots;
@@ -521,11 +525,15 @@ TEST(Hypotheses, DeadZoneSeenOnAQuietOutputBesideANoisyOneIsNamed) {
 // trades the quiet output's fit for the noisy one's: counted per output in units of its own noise
 // the offset's gain was -2.5 < 1 and the answer was "unexplained" (main 79fb76d); pooled, in the
 // units the calibration minimises, it is 4.0. (Seed 5 004 998: held out in the twentieth range,
-// development since.)
+// development since. Its dead zone is an offset at the heater on these data, 0.00 noise levels
+// from one: the generator now draws such a plant again, so the test asks for the plant drawn
+// before, distinct_from_special_cases = false.)
 TEST(Hypotheses, GainTheCalibrationTradesAcrossOutputsStillCounts) {
-  const SyntheticPlant plant = random_plant(5004998);
+  RandomPlantOptions ro;
+  ro.distinct_from_special_cases = false;
+  const SyntheticPlant plant = random_plant(5004998, ro);
   ASSERT_EQ(plant.effects.size(), 2u);
-  EXPECT_TRUE(every_true_effect_named(5004998, true));
+  EXPECT_TRUE(every_true_effect_named(5004998, true, ro));
 }
 
 // A dead zone at a position loop's drive of 0.7 % of the drive's peak (the drive peaks at each

@@ -31,7 +31,8 @@ struct TrueEffect {
   /// The truth with the law replaced by its special case (its parameters free, the plant's own
   /// free as for `detectability`), calibrated on the noise-free outputs: RMS miss / noise sigma,
   /// largest over outputs. The best of a few starts, so an upper estimate (a better optimum could
-  /// only lower it); below 2 the richer law is a special-case plant within the noise. -1: not measured.
+  /// only lower it); below 2 the richer law is a special-case plant within the noise, and
+  /// random_plant draws again (RandomPlantOptions::distinct_from_special_cases). -1: not measured.
   double detectability_vs_special_case = -1;
 };
 
