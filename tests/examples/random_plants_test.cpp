@@ -157,22 +157,24 @@ TEST(RandomPlants, DeadZoneIsMeasuredAgainstAnOffsetAtItsInput) {
 // draw). Thermal, not tanks: a dead zone at a pump that hides in the loop is an offset (forced
 // tank dead zones of 700 000 - 003 and 700 065 find no admissible plant in 40 attempts).
 TEST(RandomPlants, LawWithinTheNoiseOfItsSpecialCaseIsDrawnAgain) {
-  RandomPlantOptions o, without_rule;
+  // -1: no measure, kept.
+  const auto distinct = [](const TrueEffect& e) {
+    return e.detectability_vs_special_case < 0 || e.detectability_vs_special_case >= kDetectableInNoiseLevels;
+  };
+  RandomPlantOptions o;
   o.effects = 1;
   int redrawn = 0;
   for (const char* effect : {"stribeck_friction", "dead_zone"})
     for (unsigned seed : {700000u, 700001u, 700002u, 700003u, 700065u}) {
       o.effect = effect;
       o.family = std::string(effect) == "dead_zone" ? "thermal" : "";
-      without_rule = o;
+      RandomPlantOptions without_rule = o;
       without_rule.distinct_from_special_cases = false;
       const SyntheticPlant p = random_plant(seed, o), before = random_plant(seed, without_rule);
       const TrueEffect& e = p.effects.at(0);
       ASSERT_EQ(e.name, effect);
-      EXPECT_TRUE(e.detectability_vs_special_case < 0 || e.detectability_vs_special_case >= kDetectableInNoiseLevels)
-          << effect << " " << seed << ": " << e.detectability_vs_special_case;
-      const double v = before.effects.at(0).detectability_vs_special_case;
-      const bool kept = v < 0 || v >= kDetectableInNoiseLevels;
+      EXPECT_TRUE(distinct(e)) << effect << " " << seed << ": " << e.detectability_vs_special_case;
+      const bool kept = distinct(before.effects.at(0));
       EXPECT_EQ(to_json_text(p.truth) == to_json_text(before.truth), kept) << effect << " " << seed;
       redrawn += !kept;
     }

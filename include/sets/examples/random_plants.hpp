@@ -17,9 +17,10 @@
 // parameters and the plant's own free, calibrated on the noise-free outputs, RMS miss / noise
 // level (TrueEffect::detectability_vs_special_case). Below the same 2 noise levels the plant is a
 // plant of the special case within the noise: on its estimation record no diagnosis can tell the
-// law from the special case, so such a draw is drawn again, as one that misses "without it" by less (RandomPlantOptions::
-// distinct_from_special_cases; until 2026-11-29 the measure was a record only). It is measured
-// after every other draw of the plant, so a plant whose laws all pass is the plant drawn before.
+// law from the special case, so such a draw is drawn again, as one that misses "without it" by
+// less (RandomPlantOptions::distinct_from_special_cases; until 2026-11-29 the measure was a record
+// only). It is measured after every other draw of the plant, so a plant whose laws all pass is the
+// plant drawn before.
 // The suite report prints it in the truth column ("vs coulomb_friction 3.37 sigma").
 // See docs/reproduction/diagnosis.md.
 
