@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -332,18 +333,34 @@ ResidualReading read_residual(const VectorXd& r, const VectorXd& simulated, cons
 }  // namespace
 
 double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y) {
-  double q = 1e300;
+  double smallest = std::numeric_limits<double>::infinity();
   long steps = 0;
   for (Index k = 1; k < y.size(); ++k) {
     const double d = std::abs(y[k] - y[k - 1]);
-    if (d > 0) q = std::min(q, d), ++steps;
+    if (d > 0) smallest = std::min(smallest, d), ++steps;
   }
-  if (steps < 10) return 0;
-  for (Index k = 0; k < y.size(); ++k) {
-    const double z = (y[k] - y[0]) / q;
-    if (std::abs(z - std::round(z)) >= 1e-3) return 0;
-  }
-  return q;
+  if (steps == 0) return 0;
+  std::vector<double> sorted(y.data(), y.data() + y.size());
+  std::sort(sorted.begin(), sorted.end());
+  const long distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
+  auto on_lattice = [&](double q) {
+    for (Index k = 0; k < y.size(); ++k) {
+      const double z = (y[k] - y[0]) / q;
+      if (std::abs(z - std::round(z)) >= 1e-3) return false;
+    }
+    return true;
+  };
+  // The smallest step itself: asked of a busy output (>= 10 steps), whatever its number of levels.
+  if (on_lattice(smallest) && (steps >= 10 || distinct >= 5)) return smallest;
+  // A fraction of it (an output that crosses several levels between samples, 5 006 649; or one
+  // that sits on a level for long stretches and steps rarely, 5 007 815, whose residual was then
+  // read as noise at 1e-14 of the truth): only with >= 5 distinct values, so that values that
+  // fall on one of these 64 lattices to 1e-3 by chance (probability <= 64 (2e-3)^(5 - 2), about
+  // 5e-7) are not taken for a quantiser.
+  if (distinct < 5) return 0;
+  for (int divisor = 2; divisor <= 64; ++divisor)
+    if (on_lattice(smallest / divisor)) return smallest / divisor;
+  return 0;
 }
 
 DifferencePlateau difference_plateau(const Eigen::Ref<const Eigen::VectorXd>& x) {

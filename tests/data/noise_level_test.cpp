@@ -220,6 +220,53 @@ TEST(NoiseLevel, QuantisedOutputGivesTheQuantisationFloor) {
   EXPECT_GE(e.sigma, q / std::sqrt(12.0) * (1 - 1e-12));
 }
 
+TEST(NoiseLevel, AnOutputThatCrossesSeveralLevelsPerSampleIsStillQuantised) {
+  // Sampled 7 times per period, a sine of 100 levels never moves by one level between samples: its
+  // smallest step is a multiple of q (random plant 5 006 649's level moved the same way).
+  const int N = 4096;
+  const double q = 3e-5;
+  VectorXd y(N);
+  for (int k = 0; k < N; ++k) y[k] = q * std::round(100 * std::sin(2 * M_PI * k / 7.0 + 0.1));
+  double smallest = INFINITY;
+  for (int k = 1; k < N; ++k)
+    if (y[k] != y[k - 1]) smallest = std::min(smallest, std::abs(y[k] - y[k - 1]));
+  ASSERT_GT(smallest, 1.5 * q);  // the case: no step of one level
+  ASSERT_LT(smallest, 64.5 * q);
+  EXPECT_NEAR(lattice_step(y) / q, 1.0, 1e-9);
+}
+
+TEST(NoiseLevel, AQuantisedOutputThatStepsRarelyIsReadAtItsQuantiser) {
+  // A staircase on a lattice of step q that changes 6 times in 3000 samples, and a model that
+  // reproduces it exactly (random plant 5 007 815: a position loop's few steps seen through a
+  // sensor play, quantised): the residual is zero, and was read as a noise of 1e-14 of the truth.
+  // Nothing below q / sqrt(12) can be read from values that only sit on the lattice.
+  const double q = 2e-3;
+  const int levels[] = {3, 7, 0, -4, 9, 2, 5};
+  VectorXd y(3000);
+  for (int k = 0; k < y.size(); ++k) y[k] = q * levels[k / 430];
+  EXPECT_NEAR(lattice_step(y) / q, 1.0, 1e-9);
+  for (double scale : {1e-6, 1.0}) {
+    const NoiseLevelEstimate e = estimate_noise(scale * y, scale * y);
+    EXPECT_NEAR(e.sigma / (scale * q / std::sqrt(12.0)), 1.0, 1e-9) << e.reason;
+  }
+}
+
+TEST(NoiseLevel, FewLevelsOffAnyLatticeAreNotTakenForAQuantiser) {
+  // The same staircase with levels drawn from a continuum: values that merely repeat are no
+  // quantiser, whichever fraction of the smallest step is tried. Three or four distinct values fall
+  // on one of 64 lattices to 1e-3 about once in 8 or 2 000 draws, so they are never enough.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> level(-1, 1);
+  for (int distinct : {3, 4, 7})
+    for (int trial = 0; trial < 200; ++trial) {
+      std::vector<double> levels(static_cast<std::size_t>(distinct));
+      for (double& v : levels) v = level(rng);
+      VectorXd y(3000);
+      for (int k = 0; k < y.size(); ++k) y[k] = levels[static_cast<std::size_t>(k / 430 % distinct)];
+      EXPECT_EQ(lattice_step(y), 0.0) << distinct << " levels, trial " << trial;
+    }
+}
+
 TEST(NoiseLevel, ColouredNoiseBeforeAQuantiserIsStillReadAsColour) {
   // AR(1) noise (pole 0.9, RMS 2q) before a quantiser of step q: it dithers the quantiser, whose
   // error is then white (q^2 / 12) beside it, and the noise puts (1 - a) / (1 + a) of its own white

@@ -60,7 +60,9 @@ std::size_t most_reliable(const std::vector<NoiseLevelEstimate>& estimates);
 
 // ---- the parts, exposed for tests and for callers that need one of them
 
-/// q if every y - y[0] is an integer multiple (to 1e-3 q) of q = the smallest nonzero |step|; else 0.
+/// The largest q such that every y - y[0] is an integer multiple of q (to 1e-3 q), q being the
+/// smallest nonzero |step| or a fraction 1/2 .. 1/64 of it; 0 when there is none or too little
+/// evidence (docs/methods/noise-level.md, step 1).
 double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y);
 
 /// A lag P at which the inputs repeat themselves over stretches, and which samples n (n + P < N)
