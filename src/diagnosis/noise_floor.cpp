@@ -2,8 +2,9 @@
 // gives (the diagnosis' noise floor). The noise of a channel is a property of the channel: it is
 // estimated on every record from a calibrated model's residual and the model's exogenous inputs,
 // and the value of the most reliable method is used for all records. The floor the rules use is
-// read from the calibrated nominal's residual (before any effect is named); the final estimate is
-// read again from the augmented model's, which no longer carries the effects it names.
+// read from the calibrated nominal's residual (before any effect is named) and lowered where a
+// calibrated hypothesis leaves less than it; the final estimate is read again from the augmented
+// model's, which no longer carries the effects it names.
 
 #include "diagnosis/stages.hpp"
 
@@ -63,17 +64,36 @@ NoiseFloor levels_of(const std::vector<OutputNoise>& readings) {
   return f;
 }
 
-NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d) {
-  c.say("estimating the noise level of every output");
-  const Eigen::MatrixXd& Y = c.exact.measured();
-  d.noise = read_noise(c, d.outputs, nominal.simulation.outputs, nominal.validation_outputs, "nominal");
-  NoiseFloor f = levels_of(d.noise);
-  f.costs = noise_costs_on(Y, f.sigma);
+// The floor's misfits on both records from its levels.
+void fill_costs(const Context& c, NoiseFloor& f) {
+  f.costs = noise_costs_on(c.exact.measured(), f.sigma);
+  f.cost = 0;
   for (double x : f.costs) f.cost += x;
   if (c.exact_validation) {
     f.cost_validation = 0;
     for (double x : noise_costs_on(c.exact_validation->measured(), f.sigma)) f.cost_validation += x;
   }
+}
+
+NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d) {
+  c.say("estimating the noise level of every output");
+  d.noise = read_noise(c, d.outputs, nominal.simulation.outputs, nominal.validation_outputs, "nominal");
+  NoiseFloor f = levels_of(d.noise);
+  fill_costs(c, f);
+  return f;
+}
+
+NoiseFloor floor_within_fits(const Context& c, const NoiseFloor& floor, const std::vector<double>& least_costs,
+                             const std::vector<std::string>& outputs) {
+  NoiseFloor f = floor;
+  f.note.clear();
+  for (std::size_t j = 0; j < least_costs.size() && j < f.costs.size() && j < outputs.size(); ++j)
+    if (least_costs[j] >= 0 && least_costs[j] < f.costs[j]) {
+      const double sigma = f.sigma[j] * std::sqrt(least_costs[j] / f.costs[j]);
+      f.note += (f.note.empty() ? "" : "; ") + outputs[j] + " " + fmt(f.sigma[j]) + " -> " + fmt(sigma);
+      f.sigma[j] = sigma;
+    }
+  fill_costs(c, f);
   return f;
 }
 

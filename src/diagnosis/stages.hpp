@@ -137,6 +137,13 @@ NoiseFloor levels_of(const std::vector<OutputNoise>& readings);
 /// The noise level of every output from the calibrated nominal's residual (and the inputs'
 /// repeats), on every record, the most reliable method's value used for all; fills d.noise.
 NoiseFloor noise_floor(const Context& c, const NominalFit& nominal, Diagnosis& d);
+/// The floor no higher than a calibrated model leaves. The residual of the right model is the
+/// noise, and a model of a few parameters fitted to N samples takes only about p/N of it away; so
+/// an output on which some calibrated hypothesis leaves a misfit (`least_costs`, per output,
+/// estimation record; negative: none) below the floor's own proves the floor too high there, and
+/// it is lowered to that misfit. Other outputs keep theirs; `note` says what was lowered.
+NoiseFloor floor_within_fits(const Context& c, const NoiseFloor& floor, const std::vector<double>& least_costs,
+                             const std::vector<std::string>& outputs);
 /// The noise level read again from the final model's residual (after augment): a concealed effect
 /// left in the nominal's residual inflates the floor; once named and fitted, it no longer does.
 /// Fills d.noise_final (a copy of d.noise when no effect was named).
