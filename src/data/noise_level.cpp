@@ -340,9 +340,6 @@ double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y) {
     if (d > 0) smallest = std::min(smallest, d), ++steps;
   }
   if (steps == 0) return 0;
-  std::vector<double> sorted(y.data(), y.data() + y.size());
-  std::sort(sorted.begin(), sorted.end());
-  const long distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
   auto on_lattice = [&](double q) {
     for (Index k = 0; k < y.size(); ++k) {
       const double z = (y[k] - y[0]) / q;
@@ -350,15 +347,17 @@ double lattice_step(const Eigen::Ref<const Eigen::VectorXd>& y) {
     }
     return true;
   };
-  // The smallest step itself: asked of a busy output (>= 10 steps), whatever its number of levels.
-  if (on_lattice(smallest) && (steps >= 10 || distinct >= 5)) return smallest;
-  // A fraction of it (an output that crosses several levels between samples, 5 006 649; or one
-  // that sits on a level for long stretches and steps rarely, 5 007 815, whose residual was then
-  // read as noise at 1e-14 of the truth): only with >= 5 distinct values, so that values that
-  // fall on one of these 64 lattices to 1e-3 by chance (probability <= 64 (2e-3)^(5 - 2), about
-  // 5e-7) are not taken for a quantiser.
-  if (distinct < 5) return 0;
-  for (int divisor = 2; divisor <= 64; ++divisor)
+  // The smallest step itself on a busy output (>= 10 steps), whatever its number of levels.
+  if (steps >= 10 && on_lattice(smallest)) return smallest;
+  // Otherwise the smallest step or a fraction of it (an output that crosses several levels between
+  // samples, 5 006 649; or one that sits on a level for long stretches and steps rarely,
+  // 5 007 815, whose residual was then read as noise at 1e-14 of the truth): only with >= 5
+  // distinct values, so that values that fall on one of these 64 lattices to 1e-3 by chance
+  // (probability <= 64 (2e-3)^(5 - 2), about 5e-7) are not taken for a quantiser.
+  std::vector<double> sorted(y.data(), y.data() + y.size());
+  std::sort(sorted.begin(), sorted.end());
+  if (std::unique(sorted.begin(), sorted.end()) - sorted.begin() < 5) return 0;
+  for (int divisor = 1; divisor <= 64; ++divisor)
     if (on_lattice(smallest / divisor)) return smallest / divisor;
   return 0;
 }

@@ -266,6 +266,13 @@ bool within_noise(const Context& c, const ModelFile& m, const NoiseFloor& noise)
 // the round is judged, and stays lowered. Re-reading the floor on the current model after every
 // round instead let the error a law of the wrong shape leaves pass as a further effect
 // (twenty-fourth session); this only bounds it by what a fit achieved.
+// The screening's noise bound per output: noise_bound_factor x the floor's level.
+std::vector<double> bounds_of(const Context& c, const NoiseFloor& noise) {
+  std::vector<double> bound;
+  for (double s : noise.sigma) bound.push_back(noise_bound_factor(c.exact.samples()) * s);
+  return bound;
+}
+
 void lower_floor_to_fits(const Context& c, const Round& r, NoiseFloor& noise, std::vector<double>& bound, Diagnosis& d) {
   std::vector<double> least(noise.costs.size(), -1.0);
   for (const Trial& t : r.trials)
@@ -274,7 +281,7 @@ void lower_floor_to_fits(const Context& c, const Round& r, NoiseFloor& noise, st
   const NoiseFloor lowered = floor_within_fits(c, noise, least, d.outputs);
   if (lowered.note.empty()) return;
   noise = lowered;
-  for (std::size_t j = 0; j < bound.size(); ++j) bound[j] = noise_bound_factor(c.exact.samples()) * noise.sigma[j];
+  bound = bounds_of(c, noise);
   c.say("  a hypothesis leaves less than the noise floor: the floor lowered to it, " + lowered.note);
   d.noise_note += (d.noise_note.empty() ? "" : "; ") + std::string("the rules' floor lowered in round ") + std::to_string(r.index + 1) +
                   " to what a hypothesis left: " + lowered.note;
@@ -324,8 +331,7 @@ HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nom
     return h;
   }
   const AcceptanceRules rules = rules_of(opt);
-  std::vector<double> bound;
-  for (double s : noise.sigma) bound.push_back(noise_bound_factor(context.exact.samples()) * s);
+  std::vector<double> bound = bounds_of(context, noise);
   // A round: screening, refinement of the shortlist, the rules. With `at_file`, round 1 also
   // screens at the file's values (screen_at_file_values); false when that adds nothing.
   auto run_round = [&](const Context& c, Round& r, int round, bool at_file) {

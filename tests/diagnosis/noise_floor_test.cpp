@@ -150,8 +150,9 @@ TEST(NoiseFloor, AQuantisedOutputThatStepsRarelyIsNotReadBelowItsQuantiser) {
 }
 
 // The floor is bounded by what a calibrated hypothesis leaves: an output whose least misfit is a
-// quarter of the floor's own has its level halved (the misfit goes as sigma^2), the other output
-// and one with no fit (negative) keep theirs, and the note names what was lowered.
+// quarter of the floor's own has its level halved (the misfit goes as sigma^2) and the note names
+// it; one whose least misfit equals or exceeds the floor's, or that has no fit (negative), keeps
+// its level and adds nothing to the note.
 TEST(NoiseFloor, AFloorAboveWhatAFitLeavesIsLoweredToIt) {
   const SyntheticPlant p = random_plant(800029);  // one output; the test runs the floor twice
   test::StageRun s(p);
