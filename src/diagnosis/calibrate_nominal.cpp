@@ -231,10 +231,11 @@ void calibrate_starts(const Context& c, const std::vector<Start>& starts, const 
   }
 }
 
-// Below this fit on an output the nominal is "far from the data" (as the report says).
+// Below this fit on an output the nominal is "far from the data" (as the report says). A fit is
+// never NaN here (a simulation that is not finite ends with ok = false), so < and !(>=) agree.
 constexpr double far_fit = 50;
-bool far_from(const CalibrationResult& r) {
-  return std::any_of(r.fit.begin(), r.fit.end(), [](double f) { return !(f >= far_fit); });
+bool far_from(const std::vector<double>& fit) {
+  return std::any_of(fit.begin(), fit.end(), [](double f) { return !(f >= far_fit); });
 }
 
 // Starts for a nominal whose calibration stays far from the data from the file's values, the
@@ -299,7 +300,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   note << "calibrated from " << starts.size() << (starts.size() == 1 ? " start" : " starts") << ":";
   double worst_cost = 0;
   calibrate_starts(c, starts, at_file, n.free, copt, n.calibration, worst_cost, note);
-  if (!n.free.empty() && (!n.calibration.ok || far_from(n.calibration))) {
+  if (!n.free.empty() && (!n.calibration.ok || far_from(n.calibration.fit))) {
     const auto more = random_starts(c.model, n.free, p0);
     c.say("the nominal calibration stays far from the data (best fit below " + fixed1(far_fit) + " % on an output): " +
           std::to_string(more.size()) + " more starts");
@@ -314,7 +315,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
     // start fit 24.7 % against 10.4 %, the stiffness 2x the truth's, and the search from there
     // named three wrong effects where the first starts' optimum led to the right two. 5 008 381,
     // a Bouc-Wen law missing: 52.0 % on estimation with a negative damping, 7.5 % on validation.
-    const auto near = [](const CalibrationResult& r) { return r.ok && !far_from(r); };
+    const auto near = [](const CalibrationResult& r) { return r.ok && !far_from(r.fit); };
     const bool reaches = near(escaped) && (!c.validation || near(evaluate(*c.exact_validation, escaped.parameters)));
     if (escaped.ok && (!n.calibration.ok || reaches)) n.calibration = escaped;
     else if (n.calibration.ok) note << " none reaches the data on both records: the first starts' best is kept;";
@@ -339,10 +340,9 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
     d.fit_nominal_validation = fits(c.exact_validation->measured(), n.validation_outputs);
   }
   n.cost = cost_of(d.fit_nominal_estimation);
-  for (std::size_t j = 0; j < d.fit_nominal_estimation.size(); ++j)
-    if (d.fit_nominal_estimation[j] < far_fit) d.nominal_far = true;
+  d.nominal_far = far_from(d.fit_nominal_estimation);
   if (d.nominal_far)
-    note << " the nominal model cannot be brought near the data (best fit below 50 % on "
+    note << " the nominal model cannot be brought near the data (best fit below " << far_fit << " % on "
          << (d.fit_nominal_estimation.size() > 1 ? "an output" : "the output") << ")";
   d.nominal_note = note.str();
   return n;
