@@ -262,6 +262,27 @@ std::vector<Start> random_starts(const ModelFile& model, const std::vector<int>&
   return out;
 }
 
+// The calibrated values written into d.nominal, simulated on both records with their fits.
+void store_nominal(const Context& c, NominalFit& n, Diagnosis& d) {
+  d.nominal = c.model;
+  store_values(d.nominal, n.calibration.parameters);
+  n.simulation = c.exact.simulate(n.calibration.parameters);
+  d.fit_nominal_estimation = fits(c.exact.measured(), n.simulation.outputs);
+  if (c.validation) {
+    n.validation_outputs = c.exact_validation->simulate(n.calibration.parameters).outputs;
+    d.fit_nominal_validation = fits(c.exact_validation->measured(), n.validation_outputs);
+  }
+  n.cost = cost_of(d.fit_nominal_estimation);
+  const bool was_far = d.nominal_far;
+  d.nominal_far = far_from(d.fit_nominal_estimation);
+  if (d.nominal_far && !was_far) {
+    std::ostringstream note;
+    note << " the nominal model cannot be brought near the data (best fit below " << far_fit << " % on "
+         << (d.fit_nominal_estimation.size() > 1 ? "an output" : "the output") << ")";
+    d.nominal_note += note.str();
+  }
+}
+
 }  // namespace
 
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
@@ -308,6 +329,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
          << random_start_spread << ", " << random_start_spread << "]:";
     CalibrationResult escaped;
     calibrate_starts(c, more, at_file, n.free, copt, escaped, worst_cost, note);
+    n.random_starts_drawn = true;
     starts.insert(starts.end(), more.begin(), more.end());
     // Taken only when it reaches the data on both records: a random start that fits better but
     // stays far is no evidence of a stall (physics may be missing), and it lies farther from the
@@ -331,21 +353,42 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   if (starts.size() > 1 && worst_cost > 1.5 * best_cost)
     note << " the output-error cost has several minima; the best is used;";
   if (calibrated && !n.free.empty()) n.calibration = continue_at_final_substeps(c, n.calibration, copt, note);
-  d.nominal = c.model;
-  store_values(d.nominal, n.calibration.parameters);
-  n.simulation = c.exact.simulate(n.calibration.parameters);
-  d.fit_nominal_estimation = fits(Y, n.simulation.outputs);
-  if (c.validation) {
-    n.validation_outputs = c.exact_validation->simulate(n.calibration.parameters).outputs;
-    d.fit_nominal_validation = fits(c.exact_validation->measured(), n.validation_outputs);
-  }
-  n.cost = cost_of(d.fit_nominal_estimation);
-  d.nominal_far = far_from(d.fit_nominal_estimation);
-  if (d.nominal_far)
-    note << " the nominal model cannot be brought near the data (best fit below " << far_fit << " % on "
-         << (d.fit_nominal_estimation.size() > 1 ? "an output" : "the output") << ")";
   d.nominal_note = note.str();
+  store_nominal(c, n, d);
   return n;
+}
+
+bool recalibrate_stalled_nominal(const Context& c, NominalFit& n, Diagnosis& d) {
+  if (n.free.empty() || n.random_starts_drawn || !n.calibration.ok) return false;
+  const auto more = random_starts(c.model, n.free, values_of(c.model));
+  c.say("the calibrated nominal is not within the noise: " + std::to_string(more.size()) +
+        " more starts, in case its calibration stalled");
+  std::ostringstream note;
+  note << " not within the noise: " << more.size() << " more starts, the file's values times random factors in [1/"
+       << random_start_spread << ", " << random_start_spread << "]:";
+  CalibrationResult best;
+  double worst_cost = 0;
+  CalibrationOptions copt;
+  copt.scale = scales_for(c.model, n.free, {});
+  const CalibrationResult at_file = evaluate(c.exact, values_of(c.model));
+  calibrate_starts(c, more, at_file, n.free, copt, best, worst_cost, note);
+  n.random_starts_drawn = true;
+  if (best.ok) best = continue_at_final_substeps(c, best, copt, note);
+  // Taken as an effect would be (the acceptance rules' shares): an optimum that removes that much
+  // of the misfit on both records is a better nominal, not noise in the optimiser.
+  const auto removes = [](double before, double after, double share) { return after <= (1 - share) * before; };
+  bool taken = best.ok && removes(n.calibration.cost, best.cost, c.options.min_cost_reduction);
+  if (taken && c.validation) {
+    const CalibrationResult v = evaluate(*c.exact_validation, best.parameters);
+    taken = v.ok && removes(cost_of(d.fit_nominal_validation), v.cost, c.options.min_validation_reduction);
+  }
+  note << (taken ? " their best is taken (it removes as much of the misfit as an effect must);"
+                 : " none fits markedly better on both records: the first starts' best is kept;");
+  d.nominal_note += note.str();
+  if (!taken) return false;
+  n.calibration = best;
+  store_nominal(c, n, d);
+  return true;
 }
 
 }  // namespace sets::diagnosis_stage

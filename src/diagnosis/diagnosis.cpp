@@ -70,6 +70,18 @@ void conclude(Diagnosis& d) {
               (d.nominal_far ? "; " + d.nominal_note : "") + ".";
 }
 
+// The noise floor read from the calibrated nominal's residual, and that residual's tests.
+NoiseFloor floor_and_tests(const Context& c, const NominalFit& nominal, Diagnosis& d) {
+  const NoiseFloor noise = noise_floor(c, nominal, d);
+  d.noise_sigma = noise.sigma;
+  d.noise_note.clear();
+  for (const auto& n : d.noise)
+    d.noise_note += (d.noise_note.empty() ? "" : "; ") + n.output + ": " + noise_method_name(n.estimate.method);
+  c.say("testing the calibrated nominal's residual (falsification, whiteness, independence)");
+  d.nominal_tests = test_residual(c.exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
+  return noise;
+}
+
 }  // namespace
 
 Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Recording* val, const DiagnosisOptions& options) {
@@ -98,7 +110,13 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   std::unique_ptr<Simulator> exact_val;
   if (val) exact_val = std::make_unique<Simulator>(model, *val, SimulationOptions{opt.final_substeps});
   d.outputs = exact.output_columns();
-  const NominalFit nominal = calibrate_nominal({model, est, val, opt, exact, fast, exact_val.get(), say}, d);  // 1.
+  const Context at_file_step{model, est, val, opt, exact, fast, exact_val.get(), say};
+  NominalFit nominal = calibrate_nominal(at_file_step, d);  // 1.
+  NoiseFloor noise = floor_and_tests(at_file_step, nominal, d);
+  // Random plant 5 008 857 (clean, two masses): calibrated from the first starts to 99.2 % with a
+  // coupling damping 16x the truth's, it named viscous friction (99.8 %, as the truth's values fit).
+  if (!d.nominal_tests.within_noise() && recalibrate_stalled_nominal(at_file_step, nominal, d))
+    noise = floor_and_tests(at_file_step, nominal, d);
   // The calibrated values can have faster modes than the file's: a screening step that resolved
   // the file's values may blow up on them (RK4 outside its stability region). Then the step is
   // chosen again at the calibrated values, finer, by the first choice's test (a step just inside
@@ -122,12 +140,6 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
     other_step = std::make_unique<Simulator>(model, est, SimulationOptions{sub});
   }
   const Context c{model, est, val, opt, exact, other_step ? *other_step : fast, exact_val.get(), say};
-  const NoiseFloor noise = noise_floor(c, nominal, d);
-  d.noise_sigma = noise.sigma;
-  for (const auto& n : d.noise)
-    d.noise_note += (d.noise_note.empty() ? "" : "; ") + n.output + ": " + noise_method_name(n.estimate.method);
-  say("testing the calibrated nominal's residual (falsification, whiteness, independence)");
-  d.nominal_tests = test_residual(exact, nominal.calibration.parameters, nominal.simulation, noise.sigma, noise.pole);
   test_data_hypothesis(c, nominal, noise, d);                                   // about the data, not physics
   locate_mismatch(c, nominal, noise, d);                                        // 2.
   const HypothesisSearch search = search_hypotheses(c, nominal, noise, d);      // 3.

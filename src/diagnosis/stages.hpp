@@ -116,11 +116,18 @@ struct NominalFit {
   Eigen::MatrixXd validation_outputs;  // calibrated, final substeps, validation record (empty without)
   double cost = 0;                     // cost_of the calibrated fits (final substeps)
   bool file_values_simulated = true;   // false: the file's values blow up on the estimation record
+  bool random_starts_drawn = false;    // the random starts have been calibrated (at most once)
 };
 /// Fits of the file's values (NaN and d.fit_start_note when they blow up: the other starts are
 /// calibrated), then the calibrated nominal; fills d.fit_start_*, d.free_nominal, d.nominal and
 /// d.fit_nominal_*. NumericalError when the file's values blow up and no start can be simulated.
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d);
+/// A nominal calibrated near the data but not within the noise may have stalled there: the random
+/// starts (unless drawn already) are calibrated, and their best replaces n's calibration when it
+/// removes as much of the misfit as an effect must (options.min_cost_reduction on the estimation
+/// record, min_validation_reduction on the validation record). True when it did: n, d.nominal,
+/// d.fit_nominal_* are the new calibration's; d.nominal_note says what was tried either way.
+bool recalibrate_stalled_nominal(const Context& c, NominalFit& n, Diagnosis& d);
 
 // ---- noise_floor.cpp
 struct NoiseFloor {
