@@ -14,6 +14,7 @@
 #include "sets/examples/random_plants.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "support/diagnosis_stages.hpp"
+#include "support/plant_fixtures.hpp"
 
 using namespace sets;
 using namespace sets::diagnosis_stage;
@@ -148,13 +149,11 @@ TEST(Augment, GlobalStepOverTheEffectsParametersPutsTheTrueValuesInsideTheInterv
 // -1168 % (estimation) and -1165 % (validation) against the nominal's 97.9 % on both.
 TEST(Augment, TheReportedAugmentedModelFitsAtLeastAsWellAsTheNominalAtItsOwnSubsteps) {
   const SyntheticPlant p = random_plant(5001658);
-  DiagnosisOptions o;
-  o.threads = 1;  // as the suite runs each plant
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_EQ(d.effects.size(), 1u);
   EXPECT_EQ(d.effects[0].name, "cubic_stiffness");
   // The reported model, simulated at the substeps it is reported with, gives the reported fit.
-  const Simulator s(d.augmented, p.estimation, {o.final_substeps});
+  const Simulator s(d.augmented, p.estimation, {DiagnosisOptions{}.final_substeps});
   const CalibrationResult at_own = evaluate(s, s.parameter_values());
   ASSERT_TRUE(at_own.ok);
   ASSERT_EQ(d.fit_augmented_estimation.size(), 1u);

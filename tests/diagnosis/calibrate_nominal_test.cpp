@@ -267,9 +267,7 @@ TEST(CalibrateNominal, AStartStoppedOnItsBudgetIsContinuedAtTheScreeningStepBefo
   // validation). Continued at the screening step first, it reaches the truth's basin.
   const SyntheticPlant p = random_plant(5002312);
   ASSERT_TRUE(p.effects.empty());
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_EQ(d.fit_nominal_estimation.size(), 1u);
   EXPECT_LT(d.nominal_note.find("substeps until converged ("), d.nominal_note.find("the best continued")) << d.nominal_note;
   EXPECT_GT(d.fit_nominal_estimation[0], 99.5) << d.nominal_note;
@@ -287,9 +285,7 @@ TEST(CalibrateNominal, ARealEffectIsStillNamedWhenTheStartsAreContinued) {
   // still cannot fit what the missing friction does, and the friction is named.
   const SyntheticPlant p = random_plant(800001);
   ASSERT_EQ(p.effects.size(), 1u);
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p);
   EXPECT_LT(d.nominal_note.find("substeps until converged ("), d.nominal_note.find("the best continued")) << d.nominal_note;
   ASSERT_EQ(d.effects.size(), 1u) << d.verdict;
   EXPECT_EQ(d.effects[0].name, p.effects[0].name) << d.verdict;
@@ -325,9 +321,8 @@ TEST(CalibrateNominal, BacklashBehindAScreeningStepThatGrowsTheCalibratedModeIsE
   const SyntheticPlant p = random_plant(5003617);
   ASSERT_EQ(p.effects.size(), 1u);
   DiagnosisOptions o;
-  o.threads = 1;
   o.max_effects = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p, o);
   ASSERT_EQ(d.effects.size(), 1u) << d.verdict;
   EXPECT_EQ(d.effects[0].equation, p.effects[0].where) << d.effects[0].name;
 }
@@ -339,9 +334,7 @@ TEST(CalibrateNominal, ANominalThatStaysFarFromTheDataIsCalibratedFromMoreStarts
   // From the file's values times random factors, one start reaches the data.
   const SyntheticPlant p = random_plant(5008712);
   ASSERT_TRUE(p.effects.empty());
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_EQ(d.fit_nominal_estimation.size(), 1u);
   const auto more = d.nominal_note.find("far from the data: ");
   ASSERT_NE(more, std::string::npos) << d.nominal_note;
@@ -365,9 +358,7 @@ TEST(CalibrateNominal, ARandomStartThatStaysFarFromTheDataIsNotTaken) {
   // effects. Physics is missing, not a stall: the first starts' optimum is kept.
   const SyntheticPlant p = random_plant(5008447);
   ASSERT_EQ(p.effects.size(), 2u);
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p);
   EXPECT_NE(d.nominal_note.find("random start"), std::string::npos) << d.nominal_note;
   EXPECT_NE(d.nominal_note.find("the first starts' best is kept"), std::string::npos) << d.nominal_note;
   EXPECT_TRUE(d.nominal_far);
@@ -383,9 +374,7 @@ TEST(CalibrateNominal, ANominalThatStallsNearTheDataIsCalibratedFromMoreStarts) 
   // (99.8 %, as the truth's values fit). A random start removes far more than an effect must.
   const SyntheticPlant p = random_plant(5008857);
   ASSERT_TRUE(p.effects.empty());
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(p.nominal, p.estimation, &p.validation, o);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_EQ(d.fit_nominal_estimation.size(), 1u);
   const auto more = d.nominal_note.find("not within the noise: ");
   ASSERT_NE(more, std::string::npos) << d.nominal_note;

@@ -18,6 +18,7 @@
 #include "sets/examples/random_plants.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "support/diagnosis_stages.hpp"
+#include "support/plant_fixtures.hpp"
 
 using namespace sets;
 using namespace sets::diagnosis_stage;
@@ -252,10 +253,9 @@ TEST(Hypotheses, RicherLawIsRefinedAgainFromASpecialCaseFoundLaterThatFitsBetter
   ASSERT_EQ(plant.effects[0].name, "stribeck_friction");
   std::vector<std::string> lines;
   DiagnosisOptions o;
-  o.threads = 1;
   o.max_effects = 1;
   o.progress = [&lines](const std::string& s) { lines.push_back(s); };
-  const Diagnosis d = diagnose(plant.nominal, plant.estimation, &plant.validation, o);
+  const Diagnosis d = test::diagnosed(plant, o);
   const std::string at = " (" + plant.effects[0].where + ")";
   const std::vector<double> coulomb = refined_misfits(lines, "coulomb_friction" + at);
   const std::vector<double> stribeck = refined_misfits(lines, "stribeck_friction" + at);
@@ -293,9 +293,7 @@ TEST(Hypotheses, StribeckLawIsReachedFromCoulombsOptimumSwitchedOn) {
 TEST(Hypotheses, CoulombPlantBesideAnotherEffectIsNotNamedStribeck) {
   const SyntheticPlant plant = random_plant(800015);
   ASSERT_EQ(plant.effects.size(), 2u);
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(plant.nominal, plant.estimation, &plant.validation, o);
+  const Diagnosis d = test::diagnosed(plant);
   std::vector<std::string> named;
   for (const auto& e : d.effects) named.push_back(e.name);
   EXPECT_NE(std::find(named.begin(), named.end(), "coulomb_friction"), named.end());
@@ -315,9 +313,7 @@ TEST(Hypotheses, StribeckLawBesideAnotherEffectIsReachedFromThePairsOptimumSwitc
   ASSERT_EQ(plant.effects.size(), 2u);
   ASSERT_EQ(plant.effects[0].name, "stribeck_friction");
   ASSERT_EQ(plant.effects[1].name, "cubic_stiffness");
-  DiagnosisOptions o;
-  o.threads = 1;
-  const Diagnosis d = diagnose(plant.nominal, plant.estimation, &plant.validation, o);
+  const Diagnosis d = test::diagnosed(plant);
   auto named_at = [&](const TrueEffect& t) {
     for (const auto& e : d.effects)
       if (e.name == t.name && e.equation == t.where) return true;
@@ -464,9 +460,8 @@ TEST(Hypotheses, DelayThatEndsWorseThanTheModelIsRefinedFromTheFilesValues) {
 bool every_true_effect_named(unsigned seed, bool slots, const RandomPlantOptions& ro = {}) {
   const SyntheticPlant plant = random_plant(seed, ro);
   DiagnosisOptions o;
-  o.threads = 1;
   o.shortlist_slots = slots;
-  const Diagnosis d = diagnose(plant.nominal, plant.estimation, &plant.validation, o);
+  const Diagnosis d = test::diagnosed(plant, o);
   for (const auto& truth : plant.effects) {
     const auto at = std::find_if(d.effects.begin(), d.effects.end(), [&](const DiagnosedEffect& e) {
       return e.name == truth.name && e.equation == truth.where;

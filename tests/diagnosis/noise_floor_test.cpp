@@ -9,18 +9,10 @@
 #include "sets/examples/random_plants.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "support/diagnosis_stages.hpp"
+#include "support/plant_fixtures.hpp"
 
 using namespace sets;
 using namespace sets::diagnosis_stage;
-
-namespace {
-// The whole diagnosis of a plant on one thread, with its validation record.
-Diagnosis diagnosed(const SyntheticPlant& p) {
-  DiagnosisOptions o;
-  o.threads = 1;
-  return diagnose(p.nominal, p.estimation, &p.validation, o);
-}
-}  // namespace
 
 TEST(NoiseFloor, EstimateIsWithinAFactorTwoOfTheKnownNoise) {
   for (const char* name : {"clean_axis", "coulomb_friction"}) {
@@ -62,7 +54,7 @@ TEST(NoiseFloor, WithoutAValidationRecordTheEstimationRecordIsUsed) {
 // estimate; the report gives both, each saying whose residual it is.
 TEST(NoiseFloor, TheFinalEstimateIsReadFromTheAugmentedModelsResidual) {
   const SyntheticPlant p = random_plant(800029);  // development seed (docs/reproduction/diagnosis.md)
-  const Diagnosis d = diagnosed(p);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_FALSE(d.effects.empty());
   ASSERT_EQ(d.noise.size(), 1u);
   ASSERT_EQ(d.noise_final.size(), 1u);
@@ -91,7 +83,7 @@ TEST(NoiseFloor, TheFinalEstimateIsReadFromTheAugmentedModelsResidual) {
 
 TEST(NoiseFloor, WithoutANamedEffectTheFinalEstimateIsTheNominals) {
   const SyntheticPlant p = synthetic_plant("clean_axis");
-  const Diagnosis d = diagnosed(p);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_TRUE(d.effects.empty());
   ASSERT_EQ(d.noise_final.size(), d.noise.size());
   for (std::size_t j = 0; j < d.noise.size(); ++j) {
@@ -139,7 +131,7 @@ TEST(NoiseFloor, AQuantisedOutputsModelErrorIsNotReadAsNoiseBeyondTheQuantiser) 
 // is unchanged.
 TEST(NoiseFloor, AQuantisedOutputThatStepsRarelyIsNotReadBelowItsQuantiser) {
   const SyntheticPlant p = random_plant(5007815);
-  const Diagnosis d = diagnosed(p);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_EQ(d.effects.size(), 1u);
   EXPECT_EQ(d.effects[0].name, "hysteresis");
   ASSERT_EQ(d.noise_final.size(), 1u);
@@ -177,7 +169,7 @@ TEST(NoiseFloor, AFloorAboveWhatAFitLeavesIsLoweredToIt) {
 // against it. A hypothesis that leaves less than the floor lowers it: both effects are named.
 TEST(NoiseFloor, AnEffectHiddenByAFloorTheNominalInflatedIsNamedOnceAFitLeavesLess) {
   const SyntheticPlant p = random_plant(5005586);
-  const Diagnosis d = diagnosed(p);
+  const Diagnosis d = test::diagnosed(p);
   ASSERT_EQ(d.effects.size(), 2u);
   EXPECT_EQ(d.effects[0].name, "absolute_value_sensor");
   EXPECT_EQ(d.effects[1].name, "dead_zone");

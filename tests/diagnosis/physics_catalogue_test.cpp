@@ -38,9 +38,8 @@ std::string names_of(const Diagnosis& d) {
 // The plant diagnosed for its first effect only, on one thread.
 Diagnosis first_effect_of(const SyntheticPlant& p) {
   DiagnosisOptions o;
-  o.threads = 1;
   o.max_effects = 1;
-  return diagnose(p.nominal, p.estimation, &p.validation, o);
+  return test::diagnosed(p, o);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "sets/models/model_file.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "support/diagnosis_stages.hpp"
+#include "support/plant_fixtures.hpp"
 
 using namespace sets;
 using namespace sets::diagnosis_stage;
@@ -66,9 +67,7 @@ TEST(RefineAgain, DelayAloneReachesTheTrueNumberAndNoPartnerIsNamed) {
     ASSERT_EQ(plant.effects.size(), 1u);
     ASSERT_EQ(plant.effects[0].name, "time_delay");
     const std::string truth = to_json_text(plant.truth);
-    DiagnosisOptions o;
-    o.threads = 1;
-    const Diagnosis d = diagnose(plant.nominal, plant.estimation, &plant.validation, o);
+    const Diagnosis d = test::diagnosed(plant);
     ASSERT_EQ(d.effects.size(), 1u) << "seed " << seed << ": a partner named beside the delay";
     EXPECT_EQ(d.effects[0].name, "time_delay");
     EXPECT_NE(truth.find("prev(" + d.effects[0].equation + ", " + std::to_string(d.effects[0].delay_samples) + ")"),

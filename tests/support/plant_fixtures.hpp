@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sets/data/simulation.hpp"
+#include "sets/diagnosis/diagnosis.hpp"
 #include "sets/examples/synthetic_plants.hpp"
 #include "sets/models/model_file.hpp"
 
@@ -57,6 +58,13 @@ inline SyntheticPlant simulated_plant(const std::string& truth_json, const std::
     (r ? p.validation : p.estimation) = rec;
   }
   return p;
+}
+
+/// The whole diagnosis of a plant against its validation record, on one thread as the suite runs
+/// each plant (o.threads is overridden).
+inline Diagnosis diagnosed(const SyntheticPlant& p, DiagnosisOptions o = {}) {
+  o.threads = 1;
+  return diagnose(p.nominal, p.estimation, &p.validation, o);
 }
 
 }  // namespace sets::test
