@@ -262,6 +262,27 @@ std::vector<Start> random_starts(const ModelFile& model, const std::vector<int>&
   return out;
 }
 
+// The random starts calibrated (at most once per diagnosis), `note` saying why and how they were
+// drawn; their best (ok = false when none converged). `worst_cost` is raised to the worst.
+CalibrationResult calibrate_random_starts(const Context& c, NominalFit& n, const CalibrationResult& at_file,
+                                          const CalibrationOptions& copt, const std::string& why, double& worst_cost,
+                                          std::ostringstream& note) {
+  const auto more = random_starts(c.model, n.free, values_of(c.model));
+  note << " " << why << ": " << more.size() << " more starts, the file's values times random factors in [1/"
+       << random_start_spread << ", " << random_start_spread << "]:";
+  CalibrationResult best;
+  calibrate_starts(c, more, at_file, n.free, copt, best, worst_cost, note);
+  n.random_starts_drawn = true;
+  return best;
+}
+
+// Levenberg-Marquardt's options for the nominal's free parameters.
+CalibrationOptions nominal_calibration_options(const ModelFile& model, const std::vector<int>& free) {
+  CalibrationOptions copt;
+  copt.scale = scales_for(model, free, {});
+  return copt;
+}
+
 // The calibrated values written into d.nominal, simulated on both records with their fits.
 void store_nominal(const Context& c, NominalFit& n, Diagnosis& d) {
   d.nominal = c.model;
@@ -298,8 +319,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   for (int i : n.free) d.free_nominal.push_back(c.model.parameters[static_cast<std::size_t>(i)].name);
   c.say("calibrating the nominal model's free parameters from several starts (" + std::to_string(c.options.screening_substeps) +
         " RK4 substeps while screening, " + std::to_string(c.options.final_substeps) + " for reported fits)");
-  CalibrationOptions copt;
-  copt.scale = scales_for(c.model, n.free, {});
+  const CalibrationOptions copt = nominal_calibration_options(c.model, n.free);
   // Starts: the file's values; the equation-error least squares; the calibration on the first
   // tenth of the record continued on all of it; when all stay far from the data, random ones.
   std::vector<Start> starts{{"file values", p0}};
@@ -322,15 +342,9 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
   double worst_cost = 0;
   calibrate_starts(c, starts, at_file, n.free, copt, n.calibration, worst_cost, note);
   if (!n.free.empty() && (!n.calibration.ok || far_from(n.calibration.fit))) {
-    const auto more = random_starts(c.model, n.free, p0);
     c.say("the nominal calibration stays far from the data (best fit below " + fixed1(far_fit) + " % on an output): " +
-          std::to_string(more.size()) + " more starts");
-    note << " far from the data: " << more.size() << " more starts, the file's values times random factors in [1/"
-         << random_start_spread << ", " << random_start_spread << "]:";
-    CalibrationResult escaped;
-    calibrate_starts(c, more, at_file, n.free, copt, escaped, worst_cost, note);
-    n.random_starts_drawn = true;
-    starts.insert(starts.end(), more.begin(), more.end());
+          std::to_string(random_start_count) + " more starts");
+    const CalibrationResult escaped = calibrate_random_starts(c, n, at_file, copt, "far from the data", worst_cost, note);
     // Taken only when it reaches the data on both records: a random start that fits better but
     // stays far is no evidence of a stall (physics may be missing), and it lies farther from the
     // engineer's values. Random plant 5 008 447, an undamped nominal of a damped plant: a random
@@ -350,7 +364,7 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
     n.calibration = evaluate(c.exact, p0);
     if (!n.free.empty()) note << " the nominal calibration did not converge from any start: the file's values are used;";
   }
-  if (starts.size() > 1 && worst_cost > 1.5 * best_cost)
+  if ((starts.size() > 1 || n.random_starts_drawn) && worst_cost > 1.5 * best_cost)
     note << " the output-error cost has several minima; the best is used;";
   if (calibrated && !n.free.empty()) n.calibration = continue_at_final_substeps(c, n.calibration, copt, note);
   d.nominal_note = note.str();
@@ -360,19 +374,13 @@ NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
 
 bool recalibrate_stalled_nominal(const Context& c, NominalFit& n, Diagnosis& d) {
   if (n.free.empty() || n.random_starts_drawn || !n.calibration.ok) return false;
-  const auto more = random_starts(c.model, n.free, values_of(c.model));
-  c.say("the calibrated nominal is not within the noise: " + std::to_string(more.size()) +
+  c.say("the calibrated nominal is not within the noise: " + std::to_string(random_start_count) +
         " more starts, in case its calibration stalled");
   std::ostringstream note;
-  note << " not within the noise: " << more.size() << " more starts, the file's values times random factors in [1/"
-       << random_start_spread << ", " << random_start_spread << "]:";
-  CalibrationResult best;
   double worst_cost = 0;
-  CalibrationOptions copt;
-  copt.scale = scales_for(c.model, n.free, {});
+  const CalibrationOptions copt = nominal_calibration_options(c.model, n.free);
   const CalibrationResult at_file = evaluate(c.exact, values_of(c.model));
-  calibrate_starts(c, more, at_file, n.free, copt, best, worst_cost, note);
-  n.random_starts_drawn = true;
+  CalibrationResult best = calibrate_random_starts(c, n, at_file, copt, "not within the noise", worst_cost, note);
   if (best.ok) best = continue_at_final_substeps(c, best, copt, note);
   // Taken as an effect would be (the acceptance rules' shares): an optimum that removes that much
   // of the misfit on both records is a better nominal, not noise in the optimiser.
