@@ -264,14 +264,13 @@ std::vector<Start> random_starts(const ModelFile& model, const std::vector<int>&
 
 // The random starts calibrated (at most once per diagnosis), `note` saying why and how they were
 // drawn; their best (ok = false when none converged). `worst_cost` is raised to the worst.
-CalibrationResult calibrate_random_starts(const Context& c, NominalFit& n, const CalibrationResult& at_file,
-                                          const CalibrationOptions& copt, const std::string& why, double& worst_cost,
-                                          std::ostringstream& note) {
+CalibrationResult calibrate_random_starts(const Context& c, NominalFit& n, const CalibrationOptions& copt, const std::string& why,
+                                          double& worst_cost, std::ostringstream& note) {
   const auto more = random_starts(c.model, n.free, values_of(c.model));
   note << " " << why << ": " << more.size() << " more starts, the file's values times random factors in [1/"
        << random_start_spread << ", " << random_start_spread << "]:";
   CalibrationResult best;
-  calibrate_starts(c, more, at_file, n.free, copt, best, worst_cost, note);
+  calibrate_starts(c, more, n.file_values, n.free, copt, best, worst_cost, note);
   n.random_starts_drawn = true;
   return best;
 }
@@ -304,69 +303,82 @@ void store_nominal(const Context& c, NominalFit& n, Diagnosis& d) {
   }
 }
 
+// The first starts: the file's values; the equation-error least squares; the calibration on the
+// first tenth of the record (continued on all of it by calibrate_from).
+std::vector<Start> first_starts(const Context& c, const std::vector<int>& free, const Eigen::VectorXd& p0,
+                                const CalibrationOptions& copt) {
+  std::vector<Start> starts{{"file values", p0}};
+  if (free.empty()) return starts;
+  const Eigen::VectorXd ee = equation_error_start(c.model, c.estimation, p0);
+  if (ee.size()) starts.emplace_back("equation-error fit", ee);
+  const Eigen::Index N = c.exact.measured().rows();
+  const int rows = static_cast<int>(std::max<Eigen::Index>(std::min<Eigen::Index>(N, 200), N / 10));
+  if (rows < N) {
+    try {
+      Simulator head(c.model, head_of(c.estimation, rows), {c.options.screening_substeps});
+      const CalibrationResult h = calibrate(head, p0, free, copt);
+      if (h.ok) starts.emplace_back("first tenth of the record", h.parameters);
+    } catch (const std::exception&) {
+    }
+  }
+  return starts;
+}
+
+// When every first start stays far from the data: the random starts, taken only when they reach
+// the data on both records. A random start that fits better but stays far is no evidence of a
+// stall (physics may be missing), and it lies farther from the engineer's values. Random plant
+// 5 008 447, an undamped nominal of a damped plant: a random start fit 24.7 % against 10.4 %, the
+// stiffness 2x the truth's, and the search from there named three wrong effects where the first
+// starts' optimum led to the right two. 5 008 381, a Bouc-Wen law missing: 52.0 % on estimation
+// with a negative damping, 7.5 % on validation.
+void escape_far_calibration(const Context& c, NominalFit& n, const CalibrationOptions& copt, double& worst_cost,
+                            std::ostringstream& note) {
+  c.say("the nominal calibration stays far from the data (best fit below " + fixed1(far_fit) + " % on an output): " +
+        std::to_string(random_start_count) + " more starts");
+  const CalibrationResult escaped = calibrate_random_starts(c, n, copt, "far from the data", worst_cost, note);
+  const auto near = [](const CalibrationResult& r) { return r.ok && !far_from(r.fit); };
+  const bool reaches = near(escaped) && (!c.validation || near(evaluate(*c.exact_validation, escaped.parameters)));
+  if (escaped.ok && (!n.calibration.ok || reaches)) n.calibration = escaped;
+  else if (n.calibration.ok) note << " none reaches the data on both records: the first starts' best is kept;";
+}
+
+// The starts' best continued at the final substeps; the file's values when no start converged
+// (NumericalError when those blow up too). `several_starts`: more than one start was calibrated.
+void finish_calibration(const Context& c, NominalFit& n, bool several_starts, double worst_cost, const CalibrationOptions& copt,
+                        std::ostringstream& note) {
+  const double best_cost = n.calibration.ok ? n.calibration.cost : 1e300;
+  const bool calibrated = n.calibration.ok;
+  if (!calibrated && !n.file_values.ok)
+    throw NumericalError(c.model.source + ": the nominal model cannot be simulated over the record from any start (" + note.str() + ")");
+  if (!calibrated) {
+    n.calibration = evaluate(c.exact, values_of(c.model));
+    if (!n.free.empty()) note << " the nominal calibration did not converge from any start: the file's values are used;";
+  }
+  if (several_starts && worst_cost > 1.5 * best_cost) note << " the output-error cost has several minima; the best is used;";
+  if (calibrated && !n.free.empty()) n.calibration = continue_at_final_substeps(c, n.calibration, copt, note);
+}
+
 }  // namespace
 
 NominalFit calibrate_nominal(const Context& c, Diagnosis& d) {
-  const Eigen::MatrixXd& Y = c.exact.measured();
-  const Eigen::Index N = Y.rows();
   c.say("simulating the nominal model");
   const Eigen::VectorXd p0 = values_of(c.model);
-  const CalibrationResult at_file = fits_at_file_values(c, p0, d);
-  if (!at_file.ok) c.say(d.fit_start_note + "; calibrating from the other starts");
   NominalFit n;
-  n.file_values_simulated = at_file.ok;
+  n.file_values = fits_at_file_values(c, p0, d);
+  if (!n.file_values.ok) c.say(d.fit_start_note + "; calibrating from the other starts");
   n.free = c.fast.free_parameters();
   for (int i : n.free) d.free_nominal.push_back(c.model.parameters[static_cast<std::size_t>(i)].name);
   c.say("calibrating the nominal model's free parameters from several starts (" + std::to_string(c.options.screening_substeps) +
         " RK4 substeps while screening, " + std::to_string(c.options.final_substeps) + " for reported fits)");
   const CalibrationOptions copt = nominal_calibration_options(c.model, n.free);
-  // Starts: the file's values; the equation-error least squares; the calibration on the first
-  // tenth of the record continued on all of it; when all stay far from the data, random ones.
-  std::vector<Start> starts{{"file values", p0}};
-  if (!n.free.empty()) {
-    const Eigen::VectorXd ee = equation_error_start(c.model, c.estimation, p0);
-    if (ee.size()) starts.emplace_back("equation-error fit", ee);
-    const int rows = static_cast<int>(std::max<Eigen::Index>(std::min<Eigen::Index>(N, 200), N / 10));
-    if (rows < N) {
-      try {
-        Simulator head(c.model, head_of(c.estimation, rows), {c.options.screening_substeps});
-        const CalibrationResult h = calibrate(head, p0, n.free, copt);
-        if (h.ok) starts.emplace_back("first tenth of the record", h.parameters);
-      } catch (const std::exception&) {
-      }
-    }
-  }
+  const std::vector<Start> starts = first_starts(c, n.free, p0, copt);
   std::ostringstream note;
   if (!d.fit_start_note.empty()) note << d.fit_start_note << "; ";
   note << "calibrated from " << starts.size() << (starts.size() == 1 ? " start" : " starts") << ":";
   double worst_cost = 0;
-  calibrate_starts(c, starts, at_file, n.free, copt, n.calibration, worst_cost, note);
-  if (!n.free.empty() && (!n.calibration.ok || far_from(n.calibration.fit))) {
-    c.say("the nominal calibration stays far from the data (best fit below " + fixed1(far_fit) + " % on an output): " +
-          std::to_string(random_start_count) + " more starts");
-    const CalibrationResult escaped = calibrate_random_starts(c, n, at_file, copt, "far from the data", worst_cost, note);
-    // Taken only when it reaches the data on both records: a random start that fits better but
-    // stays far is no evidence of a stall (physics may be missing), and it lies farther from the
-    // engineer's values. Random plant 5 008 447, an undamped nominal of a damped plant: a random
-    // start fit 24.7 % against 10.4 %, the stiffness 2x the truth's, and the search from there
-    // named three wrong effects where the first starts' optimum led to the right two. 5 008 381,
-    // a Bouc-Wen law missing: 52.0 % on estimation with a negative damping, 7.5 % on validation.
-    const auto near = [](const CalibrationResult& r) { return r.ok && !far_from(r.fit); };
-    const bool reaches = near(escaped) && (!c.validation || near(evaluate(*c.exact_validation, escaped.parameters)));
-    if (escaped.ok && (!n.calibration.ok || reaches)) n.calibration = escaped;
-    else if (n.calibration.ok) note << " none reaches the data on both records: the first starts' best is kept;";
-  }
-  const double best_cost = n.calibration.ok ? n.calibration.cost : 1e300;
-  const bool calibrated = n.calibration.ok;
-  if (!n.calibration.ok && !at_file.ok)
-    throw NumericalError(c.model.source + ": the nominal model cannot be simulated over the record from any start (" + note.str() + ")");
-  if (!n.calibration.ok) {
-    n.calibration = evaluate(c.exact, p0);
-    if (!n.free.empty()) note << " the nominal calibration did not converge from any start: the file's values are used;";
-  }
-  if ((starts.size() > 1 || n.random_starts_drawn) && worst_cost > 1.5 * best_cost)
-    note << " the output-error cost has several minima; the best is used;";
-  if (calibrated && !n.free.empty()) n.calibration = continue_at_final_substeps(c, n.calibration, copt, note);
+  calibrate_starts(c, starts, n.file_values, n.free, copt, n.calibration, worst_cost, note);
+  if (!n.free.empty() && (!n.calibration.ok || far_from(n.calibration.fit))) escape_far_calibration(c, n, copt, worst_cost, note);
+  finish_calibration(c, n, starts.size() > 1 || n.random_starts_drawn, worst_cost, copt, note);
   d.nominal_note = note.str();
   store_nominal(c, n, d);
   return n;
@@ -379,8 +391,7 @@ bool recalibrate_stalled_nominal(const Context& c, NominalFit& n, Diagnosis& d) 
   std::ostringstream note;
   double worst_cost = 0;
   const CalibrationOptions copt = nominal_calibration_options(c.model, n.free);
-  const CalibrationResult at_file = evaluate(c.exact, values_of(c.model));
-  CalibrationResult best = calibrate_random_starts(c, n, at_file, copt, "not within the noise", worst_cost, note);
+  CalibrationResult best = calibrate_random_starts(c, n, copt, "not within the noise", worst_cost, note);
   if (best.ok) best = continue_at_final_substeps(c, best, copt, note);
   // Taken as an effect would be (the acceptance rules' shares): an optimum that removes that much
   // of the misfit on both records is a better nominal, not noise in the optimiser.

@@ -126,7 +126,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // When the file's values could not be simulated, no step was chosen at them (the final one was
   // used): it is chosen at the calibrated values.
   int sub = opt.screening_substeps;
-  const bool chosen_at_calibrated = options.screening_substeps <= 0 && !nominal.file_values_simulated;
+  const bool chosen_at_calibrated = options.screening_substeps <= 0 && !nominal.file_values.ok;
   if (chosen_at_calibrated)
     sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps);
   else if (blows_up_at(fast, nominal.calibration.parameters, model))

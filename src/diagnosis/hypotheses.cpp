@@ -357,7 +357,7 @@ HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nom
   const Context* cc = &context;
   for (int round = 0; round < opt.max_effects; ++round) {
     const Context& c = *cc;
-    const bool at_file = round == 0 && nominal.file_values_simulated;
+    const bool at_file = round == 0 && nominal.file_values.ok;
     Round first, again;
     run_round(c, first, round, at_file && d.nominal_far);
     Round* r = &first;
