@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <functional>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -82,6 +83,68 @@ NoiseFloor floor_and_tests(const Context& c, const NominalFit& nominal, Diagnosi
   return noise;
 }
 
+// A progress line: the wall time and the process's CPU time (all threads) since the start, so the
+// split per stage can be read on a loaded machine too. Silent without options.progress.
+std::function<void(const std::string&)> progress_lines(const DiagnosisOptions& options) {
+  if (!options.progress) return [](const std::string&) {};
+  const auto t_start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  return [progress = options.progress, t_start, cpu_start](const std::string& s) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(1)
+       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count() << " s (CPU "
+       << static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC << " s): " << s;
+    progress(os.str());
+  };
+}
+
+// The screening step for the search, given the calibrated nominal. The calibrated values can have
+// faster modes than the file's: a screening step that resolved the file's values may blow up on
+// them (RK4 outside its stability region). Then the step is chosen again at the calibrated values,
+// finer, by the first choice's test (a step just inside the stability interval is finite but can
+// misplace the mode, |R(h lambda)| near 1). Not when it merely lost precision: the screening
+// optima are refined with the final substeps anyway, and Silverbox's screening would double.
+// When the file's values could not be simulated, no step was chosen at them (the final one was
+// used): it is chosen at the calibrated values. `c.options.screening_substeps` is the first choice.
+int screening_step_at_calibrated(const Context& c, const NominalFit& nominal, bool step_given) {
+  const int first = c.options.screening_substeps, final_step = c.options.final_substeps;
+  const Eigen::VectorXd& p = nominal.calibration.parameters;
+  const bool chosen_at_calibrated = !step_given && !nominal.file_values.ok;
+  int sub = first;
+  if (chosen_at_calibrated) sub = screening_substeps(c.model, c.estimation, c.exact, p, final_step);
+  else if (blows_up_at(c.fast, p, c.model)) sub = screening_substeps(c.model, c.estimation, c.exact, p, final_step, first + 1);
+  if (sub != first)
+    c.say(std::string(chosen_at_calibrated ? "the screening step chosen at the calibrated nominal (the file's values blow up): "
+                                           : "the calibrated nominal needs a finer screening step: ") +
+          std::to_string(sub) + " RK4 substeps instead of " + std::to_string(first));
+  return sub;
+}
+
+// Each model is tested against the noise read from its own residual, as the nominal is: the
+// nominal's floor carries the effects named since (random plant 5 005 586: 31x the truth, and the
+// bound it gives passed an augmented model that still misses a dead zone; against the final
+// reading that model is falsified), or reads coloured noise the nominal's error masked as white
+// and too low (5 005 868: 0.19x).
+void test_final_model(const Context& c, Diagnosis& d) {
+  d.final_tests = d.nominal_tests;
+  if (d.effects.empty()) return;
+  const NoiseFloor left = levels_of(d.noise_final);
+  Simulator aug(d.augmented, c.estimation, {c.options.final_substeps});
+  const Eigen::VectorXd p = aug.parameter_values();
+  d.final_tests = test_residual(aug, p, aug.simulate(p), left.sigma, left.pole);
+}
+
+// The series the reports plot: time, measured and nominal outputs of both records.
+void keep_series(const Context& c, const NominalFit& nominal, Diagnosis& d) {
+  d.time_estimation = Eigen::Map<const Eigen::VectorXd>(c.exact.time().data(), c.exact.samples());
+  d.measured_estimation = c.exact.measured();
+  d.nominal_estimation = nominal.simulation.outputs;
+  if (!c.exact_validation) return;
+  d.time_validation = Eigen::Map<const Eigen::VectorXd>(c.exact_validation->time().data(), c.exact_validation->samples());
+  d.measured_validation = c.exact_validation->measured();
+  d.nominal_validation = nominal.validation_outputs;
+}
+
 }  // namespace
 
 Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Recording* val, const DiagnosisOptions& options) {
@@ -89,17 +152,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // made under it and the augmented model file records it.
   const ModelFile model = with_intersample(model_file, options.intersample);
   const auto t_start = std::chrono::steady_clock::now();
-  const std::clock_t cpu_start = std::clock();
-  // Each line says the wall time and the process's CPU time (all threads) since the start, so
-  // the split per stage can be read on a loaded machine too.
-  auto say = [&](const std::string& s) {
-    if (!options.progress) return;
-    std::ostringstream os;
-    os << std::fixed << std::setprecision(1)
-       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count() << " s (CPU "
-       << static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC << " s): " << s;
-    options.progress(os.str());
-  };
+  const auto say = progress_lines(options);
   Diagnosis d;
   d.has_validation = val != nullptr;
   DiagnosisOptions opt = options;
@@ -117,25 +170,9 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // coupling damping 16x the truth's, it named viscous friction (99.8 %, as the truth's values fit).
   if (!d.nominal_tests.within_noise() && recalibrate_stalled_nominal(at_file_step, nominal, d))
     noise = floor_and_tests(at_file_step, nominal, d);
-  // The calibrated values can have faster modes than the file's: a screening step that resolved
-  // the file's values may blow up on them (RK4 outside its stability region). Then the step is
-  // chosen again at the calibrated values, finer, by the first choice's test (a step just inside
-  // the stability interval is finite but can misplace the mode, |R(h lambda)| near 1). Not when
-  // it merely lost precision: the screening optima are refined with the final substeps anyway,
-  // and Silverbox's screening would double.
-  // When the file's values could not be simulated, no step was chosen at them (the final one was
-  // used): it is chosen at the calibrated values.
-  int sub = opt.screening_substeps;
-  const bool chosen_at_calibrated = options.screening_substeps <= 0 && !nominal.file_values.ok;
-  if (chosen_at_calibrated)
-    sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps);
-  else if (blows_up_at(fast, nominal.calibration.parameters, model))
-    sub = screening_substeps(model, est, exact, nominal.calibration.parameters, opt.final_substeps, sub + 1);
+  const int sub = screening_step_at_calibrated(at_file_step, nominal, options.screening_substeps > 0);
   std::unique_ptr<Simulator> other_step;
   if (sub != opt.screening_substeps) {
-    say(std::string(chosen_at_calibrated ? "the screening step chosen at the calibrated nominal (the file's values blow up): "
-                                         : "the calibrated nominal needs a finer screening step: ") +
-        std::to_string(sub) + " RK4 substeps instead of " + std::to_string(opt.screening_substeps));
     opt.screening_substeps = sub;
     other_step = std::make_unique<Simulator>(model, est, SimulationOptions{sub});
   }
@@ -145,29 +182,10 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   const HypothesisSearch search = search_hypotheses(c, nominal, noise, d);      // 3.
   augment(c, nominal, search, d);                                               // 4.
   final_noise(c, d);                                                            // not a rule's input
-  // Each model is tested against the noise read from its own residual, as the nominal is: the
-  // nominal's floor carries the effects named since (random plant 5 005 586: 31x the truth, and
-  // the bound it gives passed an augmented model that still misses a dead zone; against the
-  // final reading that model is falsified), or reads coloured noise the nominal's error masked as
-  // white and too low (5 005 868: 0.19x).
-  d.final_tests = d.nominal_tests;
-  if (!d.effects.empty()) {
-    const NoiseFloor left = levels_of(d.noise_final);
-    Simulator aug(d.augmented, est, {opt.final_substeps});
-    const Eigen::VectorXd p = aug.parameter_values();
-    d.final_tests = test_residual(aug, p, aug.simulate(p), left.sigma, left.pole);
-  }
+  test_final_model(c, d);
   conclude(d);
   say("done");
-
-  d.time_estimation = Eigen::Map<const Eigen::VectorXd>(exact.time().data(), exact.samples());
-  d.measured_estimation = exact.measured();
-  d.nominal_estimation = nominal.simulation.outputs;
-  if (val) {
-    d.time_validation = Eigen::Map<const Eigen::VectorXd>(exact_val->time().data(), exact_val->samples());
-    d.measured_validation = exact_val->measured();
-    d.nominal_validation = nominal.validation_outputs;
-  }
+  keep_series(c, nominal, d);
   d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return d;
 }
