@@ -151,22 +151,16 @@ std::string diagnosis_json(const Diagnosis& d, const std::string& augmented_path
   return j.dump(2) + "\n";
 }
 
-std::string diagnosis_text(const Diagnosis& d) {
-  std::ostringstream o;
-  auto fitline = [&](const char* label, const std::vector<double>& f) {
-    o << "  " << std::left << std::setw(34) << label;
-    for (std::size_t i = 0; i < f.size(); ++i)
-      o << "  " << d.outputs[i] << " " << (std::isnan(f[i]) ? "not available" : fixed1(f[i]) + " %");
-    o << "\n";
-  };
-  o << "Fit per output (100 (1 - |y - yhat| / |y - mean y|)):\n";
-  fitline("nominal, file values, estimation", d.fit_start_estimation);
-  if (!d.fit_start_note.empty()) o << "  (" << d.fit_start_note << ")\n";
-  fitline("nominal, calibrated, estimation", d.fit_nominal_estimation);
-  if (d.has_validation) fitline("nominal, calibrated, validation", d.fit_nominal_validation);
-  o << "Calibrated nominal parameters:";
-  for (const auto& n : d.free_nominal) o << " " << n << " = " << fmt(d.nominal.parameter(n)->value, 5);
-  o << "\nWhere the nominal model fails:\n";
+namespace {
+
+void fit_line(std::ostream& o, const Diagnosis& d, const char* label, const std::vector<double>& f) {
+  o << "  " << std::left << std::setw(34) << label;
+  for (std::size_t i = 0; i < f.size(); ++i) o << "  " << d.outputs[i] << " " << (std::isnan(f[i]) ? "not available" : fixed1(f[i]) + " %");
+  o << "\n";
+}
+
+// Windows, regions, frequency bands and the parameter that would have to vary most.
+void mismatch_lines(std::ostream& o, const Diagnosis& d) {
   int shown = 0;
   for (const auto& w : d.windows) {
     if (shown++ == 4) break;
@@ -180,59 +174,79 @@ std::string diagnosis_text(const Diagnosis& d) {
   for (const auto& b : d.bands)
     o << "  frequency band of the " << b.output << " residual: " << fmt(b.lo_hz) << " .. " << fmt(b.hi_hz) << " Hz (peak "
       << fmt(b.peak_hz) << " Hz)\n";
-  if (!d.varying.empty()) {
-    const auto& v = d.varying.front();
-    o << "  parameter that would have to vary most: " << v.name << " between " << fmt(v.lo, 4) << " and " << fmt(v.hi, 4)
-      << " (removes " << fixed1(100 * v.explained) << " % of the residual's window-norm bound";
-    if (!v.when.empty()) {
-      o << "; it jumps in t = ";
-      for (std::size_t w = 0; w < v.when.size(); ++w) o << (w ? ", " : "") << fmt(v.when[w].first, 4) << " .. " << fmt(v.when[w].second, 4);
-      o << " s";
-    }
-    o << ")\n";
+  if (d.varying.empty()) return;
+  const auto& v = d.varying.front();
+  o << "  parameter that would have to vary most: " << v.name << " between " << fmt(v.lo, 4) << " and " << fmt(v.hi, 4)
+    << " (removes " << fixed1(100 * v.explained) << " % of the residual's window-norm bound";
+  if (!v.when.empty()) {
+    o << "; it jumps in t = ";
+    for (std::size_t w = 0; w < v.when.size(); ++w) o << (w ? ", " : "") << fmt(v.when[w].first, 4) << " .. " << fmt(v.when[w].second, 4);
+    o << " s";
   }
-  auto noise_lines = [&](const std::vector<OutputNoise>& levels) {
-    for (const auto& n : levels)
-      o << "  " << n.output << ": sigma = " << fmt(n.estimate.sigma) << " (" << noise_method_name(n.estimate.method) << ", "
-        << n.record << " record: " << n.estimate.reason << ")\n";
-  };
+  o << ")\n";
+}
+
+void noise_lines(std::ostream& o, const std::vector<OutputNoise>& levels) {
+  for (const auto& n : levels)
+    o << "  " << n.output << ": sigma = " << fmt(n.estimate.sigma) << " (" << noise_method_name(n.estimate.method) << ", " << n.record
+      << " record: " << n.estimate.reason << ")\n";
+}
+
+// One parameter of a named effect: its estimate, its bounded-error interval and the estimates.
+void parameter_line(std::ostream& o, const Diagnosis& d, const EffectParameter& p) {
+  o << "     " << p.name << " = " << fmt(p.estimate, 5);
+  if (p.has_bounded_error_interval())
+    o << ", bounded-error interval [" << fmt(p.lo, 5) << ", " << fmt(p.hi, 5) << "] under |equation error| <= " << fmt(p.ee_delta, 3);
+  else
+    o << ", no bounded-error interval (" << (p.has_ee ? "equation-error PUI not certified" : "no equation-error PUI") << ")";
+  o << "; estimates: output error linearised at the estimate [" << fmt(p.estimate_oe_lo, 5) << ", " << fmt(p.estimate_oe_hi, 5)
+    << "] with delta =";
+  for (std::size_t k = 0; k < p.oe_delta.size(); ++k) o << (k ? "," : "") << " " << fmt(p.oe_delta[k], 3) << " (" << d.outputs[k] << ")";
+  if (p.has_ee && !p.ee_certified) o << "; equation error (not certified) [" << fmt(p.ee_lo, 5) << ", " << fmt(p.ee_hi, 5) << "]";
+  o << "; statistical 95 % [" << fmt(p.estimate_stat_lo, 5) << ", " << fmt(p.estimate_stat_hi, 5) << "]\n";
+}
+
+// The k-th named effect (from 1): its term, parameters, rules, evidence and look-alikes.
+void effect_lines(std::ostream& o, const Diagnosis& d, const DiagnosedEffect& e, std::size_t k) {
+  o << "  " << k << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
+  for (const auto& p : e.parameters) parameter_line(o, d, p);
+  if (e.delay_samples > 0) o << "     delay: " << e.delay_samples << " samples\n";
+  o << "     rules:";
+  for (const auto& r : e.rules)
+    if (r.applies) o << " " << r.name << " " << fmt(r.value, 3) << (r.passed ? " >= " : " < ") << fmt(r.threshold, 3) << ";";
+  o << "\n";
+  o << "     evidence: " << e.evidence << "\n";
+  for (std::size_t i = 0; i < e.equally_good.size(); ++i)
+    o << (i ? "; " : "     equally good on these data: ") << diagnosis_stage::equally_good_text(e.equally_good[i])
+      << (i + 1 == e.equally_good.size() ? " - the data cannot tell them apart\n" : "");
+}
+
+}  // namespace
+
+std::string diagnosis_text(const Diagnosis& d) {
+  std::ostringstream o;
+  o << "Fit per output (100 (1 - |y - yhat| / |y - mean y|)):\n";
+  fit_line(o, d, "nominal, file values, estimation", d.fit_start_estimation);
+  if (!d.fit_start_note.empty()) o << "  (" << d.fit_start_note << ")\n";
+  fit_line(o, d, "nominal, calibrated, estimation", d.fit_nominal_estimation);
+  if (d.has_validation) fit_line(o, d, "nominal, calibrated, validation", d.fit_nominal_validation);
+  o << "Calibrated nominal parameters:";
+  for (const auto& n : d.free_nominal) o << " " << n << " = " << fmt(d.nominal.parameter(n)->value, 5);
+  o << "\nWhere the nominal model fails:\n";
+  mismatch_lines(o, d);
   o << "Noise level (estimated, one value per output channel), from the calibrated nominal's residual (the rules' floor):\n";
-  noise_lines(d.noise);
+  noise_lines(o, d.noise);
   if (!d.effects.empty()) {
     o << "Noise level from the augmented model's residual (what the final model leaves as noise):\n";
-    noise_lines(d.noise_final);
+    noise_lines(o, d.noise_final);
   }
   if (d.data_hypothesis.found) o << "About the data (not physics): " << d.data_hypothesis.finding << ".\n";
   o << "Nominal calibration: " << d.nominal_note << "\n";
   o << "Verdict: " << d.verdict << "\n";
-  for (std::size_t k = 0; k < d.effects.size(); ++k) {
-    const auto& e = d.effects[k];
-    o << "  " << k + 1 << ". " << e.name << " in " << e.equation << ": " << e.term << "\n";
-    for (const auto& p : e.parameters) {
-      o << "     " << p.name << " = " << fmt(p.estimate, 5);
-      if (p.has_bounded_error_interval())
-        o << ", bounded-error interval [" << fmt(p.lo, 5) << ", " << fmt(p.hi, 5) << "] under |equation error| <= " << fmt(p.ee_delta, 3);
-      else
-        o << ", no bounded-error interval (" << (p.has_ee ? "equation-error PUI not certified" : "no equation-error PUI") << ")";
-      o << "; estimates: output error linearised at the estimate [" << fmt(p.estimate_oe_lo, 5) << ", " << fmt(p.estimate_oe_hi, 5)
-        << "] with delta =";
-      for (std::size_t k = 0; k < p.oe_delta.size(); ++k) o << (k ? "," : "") << " " << fmt(p.oe_delta[k], 3) << " (" << d.outputs[k] << ")";
-      if (p.has_ee && !p.ee_certified) o << "; equation error (not certified) [" << fmt(p.ee_lo, 5) << ", " << fmt(p.ee_hi, 5) << "]";
-      o << "; statistical 95 % [" << fmt(p.estimate_stat_lo, 5) << ", " << fmt(p.estimate_stat_hi, 5) << "]\n";
-    }
-    if (e.delay_samples > 0) o << "     delay: " << e.delay_samples << " samples\n";
-    o << "     rules:";
-    for (const auto& r : e.rules)
-      if (r.applies) o << " " << r.name << " " << fmt(r.value, 3) << (r.passed ? " >= " : " < ") << fmt(r.threshold, 3) << ";";
-    o << "\n";
-    o << "     evidence: " << e.evidence << "\n";
-    for (std::size_t k = 0; k < e.equally_good.size(); ++k)
-      o << (k ? "; " : "     equally good on these data: ") << diagnosis_stage::equally_good_text(e.equally_good[k])
-        << (k + 1 == e.equally_good.size() ? " - the data cannot tell them apart\n" : "");
-  }
+  for (std::size_t k = 0; k < d.effects.size(); ++k) effect_lines(o, d, d.effects[k], k + 1);
   if (!d.effects.empty()) {
-    fitline("augmented, estimation", d.fit_augmented_estimation);
-    if (d.has_validation) fitline("augmented, validation", d.fit_augmented_validation);
+    fit_line(o, d, "augmented, estimation", d.fit_augmented_estimation);
+    if (d.has_validation) fit_line(o, d, "augmented, validation", d.fit_augmented_validation);
   }
   o << "(" << fixed1(d.seconds) << " s)\n";
   return o.str();
