@@ -29,22 +29,20 @@ const char* behaviour(const std::string& mode) {
   return mode == "bl" ? "band-limited" : mode == "foh" ? "linear between samples" : "held";
 }
 
-}  // namespace
-
-void test_data_hypothesis(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
-  DataHypothesis& h = d.data_hypothesis;
-  const std::vector<std::string> moving = inputs_between_samples(c.model);
-  if (moving.empty()) {
-    h.note = "no input is read between samples (only by sampled signals, or no inputs): the intersample behaviour cannot matter";
-    return;
-  }
-  // Held or linear inputs that are band-limited are tried band-limited; if there are none,
-  // band-limited ones are tried held.
-  std::vector<std::string> to_bl, to_zoh;
+// The inputs to try under another behaviour: held or linear inputs that are band-limited are tried
+// band-limited; if there are none, band-limited ones are tried held. `skipped` says which inputs
+// are not band-limited.
+struct InputsToTry {
+  std::vector<std::string> inputs;
+  bool band_limited = false;  // the alternative is bl (else zoh)
   std::string skipped;
+};
+
+InputsToTry inputs_to_try(const Context& c, const std::vector<std::string>& moving) {
+  std::vector<std::string> to_bl, to_zoh;
+  InputsToTry t;
   for (const auto& in : moving) {
-    const Intersample mode = declared_intersample(c.model, in);
-    if (mode == Intersample::bl) {
+    if (declared_intersample(c.model, in) == Intersample::bl) {
       to_zoh.push_back(in);
       continue;
     }
@@ -55,20 +53,46 @@ void test_data_hypothesis(const Context& c, const NominalFit& nominal, const Noi
     if (share < max_high_band_share)
       to_bl.push_back(in);
     else
-      skipped += (skipped.empty() ? "" : "; ") + in + " has " + fmt(100 * share, 2) + " % of its power above 0.375 fs";
+      t.skipped += (t.skipped.empty() ? "" : "; ") + in + " has " + fmt(100 * share, 2) + " % of its power above 0.375 fs";
   }
-  const bool try_bl = !to_bl.empty();
-  h.inputs = try_bl ? to_bl : to_zoh;
+  t.band_limited = !to_bl.empty();
+  t.inputs = t.band_limited ? to_bl : to_zoh;
+  return t;
+}
+
+// "the input u behaves as band-limited, not held: fit 71.4 -> 84.4 % on estimation (...) ...".
+std::string finding_of(const DataHypothesis& h, const std::string& names) {
+  std::string f = std::string(h.inputs.size() > 1 ? "the inputs " : "the input ") + names +
+                  (h.inputs.size() > 1 ? " behave as " : " behaves as ") + behaviour(h.alternative) + ", not " +
+                  behaviour(h.declared) + ": fit " + fits_text(h.fit_declared_estimation, h.fit_alternative_estimation) +
+                  " on estimation";
+  if (!h.fit_alternative_validation.empty())
+    f += " (" + fits_text(h.fit_declared_validation, h.fit_alternative_validation) + " on validation)";
+  return f + " with the nominal structure; declare \"intersample\": {\"" + h.inputs.front() + "\": \"" + h.alternative +
+         "\"} in the model file or run with --intersample " + h.alternative;
+}
+
+}  // namespace
+
+void test_data_hypothesis(const Context& c, const NominalFit& nominal, const NoiseFloor& noise, Diagnosis& d) {
+  DataHypothesis& h = d.data_hypothesis;
+  const std::vector<std::string> moving = inputs_between_samples(c.model);
+  if (moving.empty()) {
+    h.note = "no input is read between samples (only by sampled signals, or no inputs): the intersample behaviour cannot matter";
+    return;
+  }
+  const InputsToTry to_try = inputs_to_try(c, moving);
+  h.inputs = to_try.inputs;
   if (h.inputs.empty()) {
-    h.note = "not tested: no input is band-limited (" + skipped + ")";
+    h.note = "not tested: no input is band-limited (" + to_try.skipped + ")";
     return;
   }
   h.declared = intersample_name(declared_intersample(c.model, h.inputs.front()));
-  h.alternative = try_bl ? "bl" : "zoh";
+  h.alternative = to_try.band_limited ? "bl" : "zoh";
   std::string names;
   for (const auto& in : h.inputs) names += (names.empty() ? "" : ", ") + in;
   c.say("data hypothesis: calibrating the nominal with " + names + " " + behaviour(h.alternative));
-  const ModelFile alt = with_intersample(c.model, h.inputs, try_bl ? Intersample::bl : Intersample::zoh);
+  const ModelFile alt = with_intersample(c.model, h.inputs, to_try.band_limited ? Intersample::bl : Intersample::zoh);
   Simulator fast(alt, c.estimation, {c.options.screening_substeps});
   Simulator exact(alt, c.estimation, {c.options.final_substeps});
   CalibrationOptions copt;
@@ -94,15 +118,8 @@ void test_data_hypothesis(const Context& c, const NominalFit& nominal, const Noi
   h.found = h.ratio >= min_ratio && v_declared - v_alt > noise.cost;
   h.note = "nominal structure calibrated with " + names + " " + behaviour(h.declared) + " (declared) and " +
            behaviour(h.alternative) + ": squared misfit ratio R = " + fmt(h.ratio, 3) + " (a finding needs R >= " +
-           fmt(min_ratio) + " and a difference above the noise's own misfit)" + (skipped.empty() ? "" : "; " + skipped);
-  if (!h.found) return;
-  h.finding = std::string(h.inputs.size() > 1 ? "the inputs " : "the input ") + names + (h.inputs.size() > 1 ? " behave as " : " behaves as ") +
-              behaviour(h.alternative) + ", not " + behaviour(h.declared) + ": fit " +
-              fits_text(h.fit_declared_estimation, h.fit_alternative_estimation) + " on estimation";
-  if (!h.fit_alternative_validation.empty())
-    h.finding += " (" + fits_text(h.fit_declared_validation, h.fit_alternative_validation) + " on validation)";
-  h.finding += " with the nominal structure; declare \"intersample\": {\"" + h.inputs.front() + "\": \"" + h.alternative +
-               "\"} in the model file or run with --intersample " + h.alternative;
+           fmt(min_ratio) + " and a difference above the noise's own misfit)" + (to_try.skipped.empty() ? "" : "; " + to_try.skipped);
+  if (h.found) h.finding = finding_of(h, names);
 }
 
 }  // namespace sets::diagnosis_stage
