@@ -115,7 +115,8 @@ struct NominalFit {
   SimulationResult simulation;         // calibrated, final substeps, estimation record
   Eigen::MatrixXd validation_outputs;  // calibrated, final substeps, validation record (empty without)
   double cost = 0;                     // cost_of the calibrated fits (final substeps)
-  CalibrationResult file_values;       // the file's values, final substeps (ok = false: they blow up)
+  CalibrationResult file_values;       // the file's values, final substeps: ok (false: they blow up) and cost
+                                       // only; their fits are in Diagnosis::fit_start_*
   bool random_starts_drawn = false;    // the random starts have been calibrated (at most once)
 };
 /// Fits of the file's values (NaN and d.fit_start_note when they blow up: the other starts are
