@@ -63,6 +63,8 @@ void conclude(Diagnosis& d) {
   const std::string what = t.falsified ? "The mismatch is real but no catalogue effect explains it ("
                            : t.white && t.bursty ? "The residual is inside the noise bound but its fast part has bursts, which noise "
                                                    "does not (a switching mismatch that no catalogue effect explains; "
+                           : t.white ? "The residual is inside the noise bound and white but follows the model's signals, which "
+                                       "noise does not (a mismatch that no catalogue effect explains; "
                            : t.any_whitened() ? "The residual is inside the noise bound but not the coloured noise read from it (a "
                                         "mismatch that no catalogue effect explains, or noise of another colour; "
                                       : "The residual is inside the noise bound but not white (coloured measurement noise, or a "
@@ -83,11 +85,11 @@ NoiseFloor floor_and_tests(const Context& c, const NominalFit& nominal, Diagnosi
   return noise;
 }
 
-// A progress line: the wall time and the process's CPU time (all threads) since the start, so the
-// split per stage can be read on a loaded machine too. Silent without options.progress.
-std::function<void(const std::string&)> progress_lines(const DiagnosisOptions& options) {
+// A progress line: the wall time since `t_start` (the diagnosis' one start, which d.seconds is
+// measured from too) and the process's CPU time (all threads) since this call, so the split per
+// stage can be read on a loaded machine too. Silent without options.progress.
+std::function<void(const std::string&)> progress_lines(const DiagnosisOptions& options, std::chrono::steady_clock::time_point t_start) {
   if (!options.progress) return [](const std::string&) {};
-  const auto t_start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   return [progress = options.progress, t_start, cpu_start](const std::string& s) {
     std::ostringstream os;
@@ -152,7 +154,7 @@ Diagnosis diagnose(const ModelFile& model_file, const Recording& est, const Reco
   // made under it and the augmented model file records it.
   const ModelFile model = with_intersample(model_file, options.intersample);
   const auto t_start = std::chrono::steady_clock::now();
-  const auto say = progress_lines(options);
+  const auto say = progress_lines(options, t_start);
   Diagnosis d;
   d.has_validation = val != nullptr;
   DiagnosisOptions opt = options;

@@ -109,7 +109,8 @@ J residual_tests_json(const Diagnosis& d, const ResidualTests& t) {
   J w = J::object();  // the AR(1) pole the whiteness test whitened each output's residual by
   for (std::size_t i = 0; i < t.whitened_by.size() && i < d.outputs.size(); ++i) w[d.outputs[i]] = num(t.whitened_by[i]);
   return {{"falsified", t.falsified}, {"white", t.white}, {"whitened_by", w}, {"worst_autocorrelation_z", num(t.worst_autocorrelation_z)},
-          {"white_threshold", num(t.white_threshold)}, {"bursty", t.bursty}, {"burst_ratio", num(t.worst_burst_ratio)}, {"independent", t.independent}, {"within_noise", t.within_noise()},
+          {"white_threshold", num(t.white_threshold)}, {"bursty", t.bursty}, {"burst_ratio", num(t.worst_burst_ratio)}, {"independent", t.independent},
+          {"follows_model_signals", t.follows_model_signals()}, {"within_noise", t.within_noise()},
           {"worst_z", num(t.worst_z)}, {"z_threshold", num(t.z_threshold)}, {"worst_signal", t.worst_signal}, {"bound", b}};
 }
 }  // namespace

@@ -29,7 +29,8 @@ std::string ResidualTests::summary() const {
     << " standard deviations at lag " << worst_lag << ", threshold " << white_threshold << ")";
   o << "; " << (bursty ? "bursts" : "no bursts") << " in the residual's fast part (RMS / clipped RMS of its differences " << worst_burst_ratio
     << (bound.size() > 1 ? " on output " + std::to_string(worst_burst_output + 1) : std::string()) << ", limit " << kBurstRatioLimit << ")";
-  o << "; largest correlation with the model's signals " << worst_z << " standard deviations (threshold " << z_threshold << ")";
+  o << "; largest correlation with the model's signals " << worst_z << " standard deviations (threshold " << z_threshold << ", decisive beyond "
+    << kIndependenceMargin * z_threshold << ")";
   if (!worst_signal.empty()) o << ", " << worst_signal;
   return o.str();
 }

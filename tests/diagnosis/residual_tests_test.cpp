@@ -117,6 +117,41 @@ TEST(ResidualTests, MissingCoulombFrictionIsNotWithinTheNoise) {
   EXPECT_FALSE(t.within_noise());
 }
 
+TEST(ResidualTests, IndependenceDecidesWhenTheResidualFollowsAModelSignal) {
+  // The correct model driven by an input drawn afresh each sample, white noise, and a residual part
+  // that follows |u| sample by sample (a size no parameter of the linear model can take up): small
+  // beside the noise, so the residual stays inside the bound, white and without bursts, yet it
+  // correlates with |u| far beyond the threshold, which noise does not. Without that part the
+  // same record is within the noise (its size is the only change).
+  const SyntheticPlant p = synthetic_plant("clean_axis");
+  const int n = 8000;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> draw(-1, 1);
+  Recording r;
+  std::vector<double> t(n), u(n);
+  for (int k = 0; k < n; ++k) t[static_cast<std::size_t>(k)] = 0.01 * k, u[static_cast<std::size_t>(k)] = draw(rng);
+  r.add("t", t);
+  r.add("u", u);
+  r.add("x_meas", std::vector<double>(n, 0.0));
+  Simulator truth(p.truth, r, {10});
+  const Eigen::VectorXd y = truth.simulate(truth.parameter_values()).outputs.col(0);
+  const double sigma = 0.01 * std::sqrt((y.array() - y.mean()).square().mean());
+  const Eigen::VectorXd size = Eigen::Map<const Eigen::VectorXd>(u.data(), n).cwiseAbs();
+  const Eigen::VectorXd part = (size.array() - size.mean()) / std::sqrt((size.array() - size.mean()).square().mean());
+  std::normal_distribution<double> e(0, sigma);
+  for (double share : {0.0, 0.15}) {  // std of the |u| part over sigma
+    std::vector<double> m(n);
+    for (int k = 0; k < n; ++k) m[static_cast<std::size_t>(k)] = y[k] + e(rng) + share * sigma * part[k];
+    r.add("x_meas", m);
+    const ResidualTests tests = calibrated_tests(p.nominal, r, sigma);
+    EXPECT_FALSE(tests.falsified) << share << ": " << tests.summary();
+    EXPECT_TRUE(tests.white) << share << ": " << tests.summary();
+    EXPECT_FALSE(tests.bursty) << share << ": " << tests.summary();
+    EXPECT_EQ(tests.follows_model_signals(), share > 0) << share << ": " << tests.summary();
+    EXPECT_EQ(tests.within_noise(), share == 0) << share << ": " << tests.summary();
+  }
+}
+
 TEST(ResidualTests, WhitenessAloneCatchesASystematicResidual) {
   // With a noise level so large that the bound cannot falsify it, the residual of the Coulomb
   // plant is still far from white.

@@ -1,5 +1,5 @@
 #pragma once
-// Is a calibrated model within the noise? Three tests that must agree before the diagnosis says
+// Is a calibrated model within the noise? Four tests that must agree before the diagnosis says
 // "no physics is missing":
 //  * falsification: the output error linearised at the calibrated parameters, strips
 //    |r_t - J_t dtheta| <= delta_j with delta_j = c_N sigma_j (c_N = 1.2 sqrt(2 ln 2N): the largest
@@ -20,9 +20,16 @@
 // power spread over every frequency can be read as noise by the estimate (random plant 5 004 294:
 // the noise read 7.5x too high, whitened by the pole that model error bent, "nothing missing").
 // Unlike the other two it does not depend on the noise level: an over-read floor cannot hide it.
-// Reported besides (not decisive): independence, the residual's correlation with every
-// input and simulated signal of the model (and their absolute values) at lags 0, +-1, +-2, ...
-// N/20 against Bartlett's variance for two autocorrelated series, (1/N) sum_k rho_rr(k) rho_ss(k).
+// A fourth, independence: the residual's correlation with every input and simulated signal of the
+// model (and their absolute values) at lags 0, +-1, +-2, ... N/20 against Bartlett's variance for
+// two autocorrelated series, (1/N) sum_k rho_rr(k) rho_ss(k), Bonferroni's threshold at 1 %. It is
+// reported as `independent`, and decides only beyond kIndependenceMargin times that threshold:
+// where the noise is over-read (model error spread over every frequency, random plant 5 009 595:
+// 7.3x, whitened by the pole that error bent) the other three can pass while the residual still
+// follows the model's signals (there 3.2x the threshold). The margin keeps it off correct models,
+// whose calibrated residual comes near the threshold (it is a calibration's, not the noise itself):
+// up to 1.27x on the 492 plants without an effect of random seeds 5 008 000 - 5 009 699 whose
+// nominal passes the other three tests.
 // The noise levels sigma_j are an input: an estimate, and the tests are only as good as it is.
 
 #include <Eigen/Core>
@@ -35,6 +42,9 @@
 #include "sets/data/simulation.hpp"
 
 namespace sets {
+
+// The independence test decides beyond this multiple of its threshold (above).
+constexpr double kIndependenceMargin = 2;
 
 struct ResidualTests {
   bool falsified = false;     // no parameter value of the linearised model keeps every residual inside
@@ -50,7 +60,9 @@ struct ResidualTests {
   bool bursty = false;        // some output's residual has bursts in its fast part (sets::burst_ratio)
   double worst_burst_ratio = 1;
   int worst_burst_output = 0;
-  bool within_noise() const { return !falsified && white && !bursty; }
+  // Correlated with the model's signals beyond the margin (the independence test's decisive part).
+  bool follows_model_signals() const { return worst_z > kIndependenceMargin * z_threshold; }
+  bool within_noise() const { return !falsified && white && !bursty && !follows_model_signals(); }
   bool any_whitened() const {  // was the whiteness test run on a whitened residual for some output?
     return std::any_of(whitened_by.begin(), whitened_by.end(), [](double a) { return a != 0; });
   }
