@@ -8,7 +8,9 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
+#include "data/lane_expression.hpp"
 #include "models/expression.hpp"
 #include "sets/core/error.hpp"
 #include "sets/core/printable.hpp"
@@ -64,6 +66,8 @@ struct Simulator::Impl {
   bool inputs_move = false;                  // some input is not held (foh, bl)
   std::vector<double> initial_state;
   std::vector<Compiled> signal_expr, sampled_expr, deriv_expr;
+  // The same expressions for simulations run side by side (simulate_outputs_each).
+  std::vector<Lane_expression> signal_lanes, sampled_lanes, deriv_lanes;
   std::vector<int> deriv_of_state;  // derivative expression index for each state
   std::vector<PrevRef> prevs;
   std::vector<int> recorded_slots;  // inputs, states, signals, sampled
@@ -219,6 +223,12 @@ Simulator::Simulator(const ModelFile& model, const Recording& data, SimulationOp
   for (const auto& o : model.outputs) I.output_slots.push_back(I.slot_of.at(o.first));
   I.measured = take_measured(model, data);
   I.take_addresses();
+  std::unordered_map<const double*, int> slot_at;
+  for (std::size_t s = 0; s < I.slots.size(); ++s) slot_at[&I.slots[s]] = static_cast<int>(s);
+  const auto slot_of = [&](const double* address) { return slot_at.at(address); };
+  for (auto& c : I.signal_expr) I.signal_lanes.emplace_back(c.parser, slot_of);
+  for (auto& c : I.sampled_expr) I.sampled_lanes.emplace_back(c.parser, slot_of);
+  for (auto& c : I.deriv_expr) I.deriv_lanes.emplace_back(c.parser, slot_of);
 }
 
 Simulator::~Simulator() = default;
@@ -353,6 +363,85 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
   return r;
 }
 
+// run() for each column of `params` at once, its outputs only: the same steps in the same order,
+// each lane's arithmetic as run()'s, so each lane's outputs are bit for bit those of run() with its
+// column. A lane that blows up is marked and carried on with the others. Slots start as run()
+// would find them and end as the last lane leaves them (a signal that reads a later one reads the
+// value left by the run before, as in run()).
+static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd>& params,
+                      std::vector<Eigen::MatrixXd>& outputs, std::vector<bool>& ok) {
+  const int N = static_cast<int>(I.time.size());
+  const auto L = static_cast<std::size_t>(params.cols());
+  const int lanes = static_cast<int>(L);
+  const std::size_t ns = I.state_slots.size();
+  std::vector<double> v(I.slots.size() * L), tmp(L);
+  for (std::size_t s = 0; s < I.slots.size(); ++s) std::fill_n(v.begin() + static_cast<std::ptrdiff_t>(s * L), L, I.slots[s]);
+  const auto lane = [&](int slot) { return v.data() + static_cast<std::size_t>(slot) * L; };
+  for (std::size_t i = 0; i < I.param_slots.size(); ++i)
+    for (std::size_t l = 0; l < L; ++l) lane(I.param_slots[i])[l] = params(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(l));
+  const auto fill = [&](int slot, double value) { std::fill_n(lane(slot), L, value); };
+  const auto set_inputs = [&](std::size_t k, int j) {
+    for (std::size_t i = 0; i < I.input_slots.size(); ++i) fill(I.input_slots[i], I.input_data[i].at(k, j));
+  };
+  const auto set_states = [&](const double* xs) {
+    for (std::size_t i = 0; i < ns; ++i) std::copy_n(xs + i * L, L, lane(I.state_slots[i]));
+  };
+  const auto eval_into = [&](const Lane_expression& e, int slot) {
+    e.eval(v.data(), lanes, tmp.data());  // every lane read before any is written, as run() does
+    std::copy(tmp.begin(), tmp.end(), lane(slot));
+  };
+  const auto eval_signals = [&] {
+    for (std::size_t i = 0; i < I.signal_lanes.size(); ++i) eval_into(I.signal_lanes[i], I.signal_slots[i]);
+  };
+  const auto derivative = [&](const double* xs, double tt, double* dx) {
+    fill(I.t_slot, tt);
+    set_states(xs);
+    eval_signals();
+    for (std::size_t i = 0; i < ns; ++i) I.deriv_lanes[static_cast<std::size_t>(I.deriv_of_state[i])].eval(v.data(), lanes, dx + i * L);
+  };
+  std::vector<double> x(ns * L), k1(ns * L), k2(ns * L), k3(ns * L), k4(ns * L), xt(ns * L);
+  for (std::size_t i = 0; i < ns; ++i) std::fill_n(x.begin() + static_cast<std::ptrdiff_t>(i * L), L, I.initial_state[i]);
+  outputs.assign(L, Eigen::MatrixXd(N, static_cast<Eigen::Index>(I.output_slots.size())));
+  ok.assign(L, true);
+  std::size_t live = L;
+  for (int k = 0; k < N && live > 0; ++k) {
+    const double tk = I.time[static_cast<std::size_t>(k)];
+    fill(I.t_slot, tk);
+    set_inputs(static_cast<std::size_t>(k), 0);
+    set_states(x.data());
+    eval_signals();
+    for (std::size_t i = 0; i < I.sampled_lanes.size(); ++i) eval_into(I.sampled_lanes[i], I.sampled_slots[i]);
+    eval_signals();  // signals may use sampled values
+    for (std::size_t j = 0; j < I.output_slots.size(); ++j)
+      for (std::size_t l = 0; l < L; ++l) outputs[l](k, static_cast<Eigen::Index>(j)) = lane(I.output_slots[j])[l];
+    if (k + 1 == N) break;
+    const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
+    double tt = tk;
+    const auto kk = static_cast<std::size_t>(k);
+    for (int s = 0; s < I.options.substeps && live > 0; ++s) {
+      if (I.inputs_move) set_inputs(kk, 2 * s);
+      derivative(x.data(), tt, k1.data());
+      for (std::size_t i = 0; i < ns * L; ++i) xt[i] = x[i] + 0.5 * h * k1[i];
+      if (I.inputs_move) set_inputs(kk, 2 * s + 1);
+      derivative(xt.data(), tt + 0.5 * h, k2.data());
+      for (std::size_t i = 0; i < ns * L; ++i) xt[i] = x[i] + 0.5 * h * k2[i];
+      derivative(xt.data(), tt + 0.5 * h, k3.data());
+      for (std::size_t i = 0; i < ns * L; ++i) xt[i] = x[i] + h * k3[i];
+      if (I.inputs_move) set_inputs(kk, 2 * s + 2);
+      derivative(xt.data(), tt + h, k4.data());
+      for (std::size_t i = 0; i < ns * L; ++i) x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+      tt += h;
+      for (std::size_t i = 0; i < ns * L; ++i)
+        if (ok[i % L] && (!std::isfinite(x[i]) || std::abs(x[i]) > 1e150)) {
+          ok[i % L] = false;
+          --live;
+        }
+    }
+  }
+  for (std::size_t l = 0; l < L; ++l) ok[l] = ok[l] && outputs[l].allFinite();
+  for (std::size_t s = 0; s < I.slots.size(); ++s) I.slots[s] = v[s * L + L - 1];
+}
+
 SimulationResult Simulator::simulate(const Eigen::Ref<const Eigen::VectorXd>& parameters) const {
   SimulationResult res;
   for (int s : impl_->recorded_slots) res.names.push_back(impl_->name_of_slot.at(s));
@@ -391,6 +480,24 @@ bool Simulator::simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixX
     return run(*impl_, schedule.row(0).transpose(), outputs, false, unused, schedule).ok;
   } catch (const mu::Parser::exception_type&) {
     return false;
+  }
+}
+
+void Simulator::simulate_outputs_each(const Eigen::Ref<const Eigen::MatrixXd>& parameters,
+                                      std::vector<Eigen::MatrixXd>& outputs, std::vector<bool>& ok) const {
+  auto& I = *impl_;
+  if (parameters.rows() != static_cast<Eigen::Index>(I.param_slots.size())) throw InputError("wrong number of parameters");
+  const auto one_by_one = [&] {
+    outputs.assign(static_cast<std::size_t>(parameters.cols()), Eigen::MatrixXd());
+    ok.assign(outputs.size(), false);
+    for (std::size_t l = 0; l < outputs.size(); ++l)
+      ok[l] = simulate_outputs(parameters.col(static_cast<Eigen::Index>(l)), outputs[l]);
+  };
+  if (!I.prevs.empty() || parameters.cols() < 2) return one_by_one();  // prev() keeps a history per run
+  try {
+    run_lanes(I, parameters, outputs, ok);
+  } catch (const mu::Parser::exception_type&) {
+    one_by_one();  // as simulate_outputs: the lane that throws fails, the others do not
   }
 }
 

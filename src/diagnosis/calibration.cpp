@@ -1,11 +1,11 @@
 #include "sets/diagnosis/calibration.hpp"
 
 #include <unsupported/Eigen/NonLinearOptimization>
-#include <unsupported/Eigen/NumericalDiff>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace sets {
 
@@ -67,19 +67,91 @@ struct Residual {
     return r;
   }
 
-  int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& f) const {
+  // The residual of a simulation: weighted output error, or a large finite one where it blew up
+  // (which sends LM back).
+  void residual_of(const Simulated& s, Eigen::VectorXd& f) const {
     const auto& y = sim->measured();
-    const Simulated& s = simulated(parameters(z));
-    const Eigen::MatrixXd& yhat = s.yhat;
     if (!s.ok) {
-      // A trial step that blows up: a large, finite residual sends LM back.
       f = Eigen::VectorXd::Constant(values(), 1e3 / std::sqrt(static_cast<double>(values())));
-      return 0;
+      return;
     }
     f.resize(values());
     const Eigen::Index N = y.rows();
-    for (Eigen::Index j = 0; j < y.cols(); ++j) f.segment(j * N, N) = (y.col(j) - yhat.col(j)) * weight[j];
+    for (Eigen::Index j = 0; j < y.cols(); ++j) f.segment(j * N, N) = (y.col(j) - s.yhat.col(j)) * weight[j];
+  }
+
+  int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& f) const {
+    residual_of(simulated(parameters(z)), f);
     return 0;
+  }
+
+  // Eigen::NumericalDiff's forward differences, bit for bit: f(z) (simulated already: the cache),
+  // then column j from z + h_j e_j, h_j = sqrt(epsfcn) |z_j| (sqrt(epsfcn) at 0). The columns'
+  // simulations that the cache of the last two does not serve run side by side
+  // (Simulator::simulate_outputs_each); the cache, the count and the progress calls end as the
+  // columns one after the other would leave them. Returns NumericalDiff's count for maxfev.
+  double epsfcn = 0;
+  int df(const Eigen::VectorXd& z, Eigen::MatrixXd& jac) const {
+    const Eigen::Index n = z.size();
+    const double eps = std::sqrt(std::max(epsfcn, Eigen::NumTraits<double>::epsilon()));
+    Eigen::VectorXd f0(values()), f1(values());
+    (*this)(z, f0);
+    std::vector<Eigen::VectorXd> p(static_cast<std::size_t>(n));
+    std::vector<double> h(static_cast<std::size_t>(n));
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto jj = static_cast<std::size_t>(j);
+      h[jj] = eps * std::abs(z[j]);
+      if (h[jj] == 0.) h[jj] = eps;
+      Eigen::VectorXd zj = z;
+      zj[j] += h[jj];
+      p[jj] = parameters(zj);
+    }
+    // The cache replayed in column order: held[r] is -1 - r for recent[r] as it is now, or the
+    // column whose simulation took that place.
+    std::array<int, 2> held{-1, -2};
+    std::size_t at = next;
+    std::vector<int> source(static_cast<std::size_t>(n));
+    std::vector<int> to_run;
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      int found = 0;
+      bool hit = false;
+      for (int r : held) {
+        const Eigen::VectorXd& q = r < 0 ? recent[static_cast<std::size_t>(-1 - r)].p : p[static_cast<std::size_t>(r)];
+        if (!hit && q.size() == p[j].size() && q == p[j]) hit = true, found = r;
+      }
+      if (!hit) {
+        found = static_cast<int>(j);
+        to_run.push_back(found);
+        held[at] = found;
+        at = (at + 1) % held.size();
+        ++*evaluations;
+        if (*progress && *progress) (*progress)(*evaluations);
+      }
+      source[j] = found;
+    }
+    Eigen::MatrixXd columns(base.size(), static_cast<Eigen::Index>(to_run.size()));
+    for (std::size_t i = 0; i < to_run.size(); ++i) columns.col(static_cast<Eigen::Index>(i)) = p[static_cast<std::size_t>(to_run[i])];
+    std::vector<Eigen::MatrixXd> outputs;
+    std::vector<bool> ok;
+    if (!to_run.empty()) sim->simulate_outputs_each(columns, outputs, ok);
+    std::vector<Simulated> ran(p.size());
+    for (std::size_t i = 0; i < to_run.size(); ++i) {
+      Simulated& r = ran[static_cast<std::size_t>(to_run[i])];
+      r.p = p[static_cast<std::size_t>(to_run[i])];
+      r.yhat = std::move(outputs[i]);
+      r.ok = ok[i] && r.yhat.allFinite();
+    }
+    const auto simulation = [&](int r) -> const Simulated& {
+      return r < 0 ? recent[static_cast<std::size_t>(-1 - r)] : ran[static_cast<std::size_t>(r)];
+    };
+    for (Eigen::Index j = 0; j < n; ++j) {
+      residual_of(simulation(source[static_cast<std::size_t>(j)]), f1);
+      jac.col(j) = (f1 - f0) / h[static_cast<std::size_t>(j)];
+    }
+    const std::array<Simulated, 2> kept{simulation(held[0]), simulation(held[1])};
+    recent = kept;
+    next = at;
+    return static_cast<int>(n) + 1;
   }
 };
 
@@ -148,15 +220,15 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::
   // Step 1e-3 of each scaled parameter: friction signs make the cost rough at the 1e-8 level.
   res.recent[0] = {start, r.outputs, true};  // LM starts where `r` was simulated (when z * scale rounds back to it)
   res.next = 1;
-  Eigen::NumericalDiff<Residual> diff(res, 1e-6);  // a copy of res: its memory is diff's
-  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<Residual>> lm(diff);
+  res.epsfcn = 1e-6;
+  Eigen::LevenbergMarquardt<Residual> lm(res);
   lm.parameters.maxfev = std::max(1, options.max_evaluations / static_cast<int>(n + 1));
   lm.parameters.ftol = options.tolerance;
   lm.parameters.xtol = options.tolerance;
   lm.parameters.factor = 10;
   const auto status = lm.minimize(z);
   const Eigen::VectorXd best = res.parameters(z);
-  const auto& at_best = diff.simulated(best);  // LM's last accepted point: simulated already
+  const auto& at_best = res.simulated(best);  // LM's last accepted point: simulated already
   CalibrationResult out = result_of(sim, best, at_best.yhat, at_best.ok);
   out.free = free;
   out.evaluations = evaluations;

@@ -120,3 +120,40 @@ TEST(Simulation, AnExpressionThatIsOneSymbolIsThatSymbolsValue) {
   p << -1.0;  // the parameter's slot is read at each call
   EXPECT_NEAR(s.simulate(p).series("v")[8], 1 - 2.0, 1e-12);
 }
+
+TEST(Simulation, RunsSideBySideGiveEachRunsOutputsBitForBit) {
+  // simulate_outputs_each against simulate_outputs column by column: signals, a sampled signal, an
+  // input between samples (foh), a friction-like sign and a condition the runs take differently,
+  // and one run that blows up while the others go on.
+  const ModelFile m = parse_model(R"json({"sample_time": 0.05, "inputs": {"u": "u"},
+    "intersample": {"u": "foh"},
+    "parameters": {"k": 2.0, "c": 0.3, "Fc": 0.2, "g": 0.0},
+    "states": {"x": 0.1, "v": 0.0}, "signals": {"F": "Fc*sign(v) + (x > 0.05 ? c*v : 0.5*c*v)"},
+    "sampled": {"us": "u - 0.1*x"}, "derivatives": {"x": "v", "v": "us - k*x - F + g*v^3"},
+    "outputs": {"x": "y", "F": "y"}})json", "side_by_side.json");
+  Recording r;
+  std::vector<double> u(400), y(400, 0.0);
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = std::sin(0.07 * static_cast<double>(k)) + (k % 37 < 5 ? 1.0 : 0.0);
+  r.add("u", u);
+  r.add("y", y);
+  const Simulator s(m, r, {2});
+  Eigen::MatrixXd p(4, 5);
+  p.col(0) << 2.0, 0.3, 0.2, 0.0;
+  p.col(1) << 2.0 * (1 + 1e-3), 0.3, 0.2, 0.0;
+  p.col(2) << 0.5, 0.8, 0.0, 0.0;
+  p.col(3) << 2.0, 0.3, 0.2, 5e3;  // v^3 with a large gain: blows up
+  p.col(4) << 9.0, 0.01, 1.0, 0.0;
+  std::vector<Eigen::MatrixXd> each;
+  std::vector<bool> ok;
+  s.simulate_outputs_each(p, each, ok);
+  ASSERT_EQ(each.size(), 5u);
+  for (Eigen::Index j = 0; j < p.cols(); ++j) {
+    Eigen::MatrixXd alone;
+    const bool alone_ok = s.simulate_outputs(p.col(j), alone);
+    EXPECT_EQ(ok[static_cast<std::size_t>(j)], alone_ok) << "run " << j;
+    if (alone_ok) EXPECT_TRUE(each[static_cast<std::size_t>(j)] == alone) << "run " << j;  // exact equality
+  }
+  EXPECT_FALSE(ok[3]);
+  EXPECT_TRUE(ok[0] && ok[1] && ok[2] && ok[4]);
+  EXPECT_FALSE(each[0] == each[1]);  // the runs are not one run copied
+}

@@ -1,12 +1,16 @@
 // Calibration by output error (src/diagnosis/calibration.cpp): fits in percent, Levenberg-Marquardt
 // recovering the parameters of a noise-free first-order plant from a wrong start, whether it stopped
 // on its tolerances or its budget, bounds kept by clamping, and a blow-up reported as ok = false
-// rather than thrown.
+// rather than thrown, and a Jacobian whose columns run side by side that is Eigen's NumericalDiff's
+// bit for bit.
 
 #include "sets/diagnosis/calibration.hpp"
 
 #include <gtest/gtest.h>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -118,4 +122,74 @@ TEST(Calibration, AStartThatBlowsUpIsNotOk) {
   const Simulator sim(m, r);
   EXPECT_FALSE(evaluate(sim, sim.parameter_values()).ok);  // x' = x^2 escapes at t = 1
   EXPECT_FALSE(calibrate(sim, sim.parameter_values(), {0}).ok);
+}
+
+namespace {
+
+// The output error calibrate() minimises, one simulation per call: Eigen's NumericalDiff over it
+// is the reference for calibrate()'s own forward differences.
+struct One_at_a_time {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+  const Simulator* sim = nullptr;
+  Eigen::VectorXd scale;
+  int inputs() const { return static_cast<int>(scale.size()); }
+  int values() const { return static_cast<int>(sim->measured().rows()); }
+  Eigen::VectorXd parameters(const Eigen::VectorXd& z) const {
+    Eigen::VectorXd p(z.size());
+    for (Eigen::Index i = 0; i < z.size(); ++i) p[i] = std::clamp(scale[i] * z[i], -1e300, 1e300);
+    return p;
+  }
+  int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& f) const {
+    const Eigen::VectorXd& y = sim->measured().col(0);
+    Eigen::MatrixXd yhat;
+    if (!sim->simulate_outputs(parameters(z), yhat)) {  // a trial step that blows up
+      f = Eigen::VectorXd::Constant(values(), 1e3 / std::sqrt(static_cast<double>(values())));
+      return 0;
+    }
+    f = (y - yhat.col(0)) * (1.0 / (y.array() - y.mean()).matrix().norm());
+    return 0;
+  }
+};
+
+}  // namespace
+
+TEST(Calibration, ItsJacobianIsEigensForwardDifferenceBitForBit) {
+  // Three free parameters, so that the Jacobian's three columns run side by side
+  // (Simulator::simulate_outputs_each), on a plant with a cubic term.
+  const char* cubic = R"json({"sample_time": 0.02, "inputs": {"u": "u"},
+    "parameters": {"a": 2.0, "b": 1.5, "c": 0.8}, "states": {"x": 0.0},
+    "derivatives": {"x": "-a*x + b*u - c*x*x*x"}, "outputs": {"x": "y"}})json";
+  Recording r = first_order_record();
+  {
+    const Simulator truth(parse_model(cubic, "truth"), r);
+    const Eigen::VectorXd y = truth.simulate(truth.parameter_values()).outputs.col(0);
+    r.add("y", std::vector<double>(y.data(), y.data() + y.size()));
+  }
+  ModelFile m = parse_model(cubic, "nominal");
+  m.parameter("a")->value = 1.3;
+  m.parameter("b")->value = 0.7;
+  m.parameter("c")->value = 0.1;
+  const Simulator sim(m, r);
+  const Eigen::VectorXd start = sim.parameter_values();
+  const CalibrationResult c = calibrate(sim, start, {0, 1, 2});
+  ASSERT_TRUE(c.ok);
+  One_at_a_time reference;
+  reference.sim = &sim;
+  reference.scale = start.cwiseAbs();
+  Eigen::NumericalDiff<One_at_a_time> diff(reference, 1e-6);
+  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<One_at_a_time>> lm(diff);
+  lm.parameters.maxfev = 300 / 4;
+  lm.parameters.ftol = 1e-7;
+  lm.parameters.xtol = 1e-7;
+  lm.parameters.factor = 10;
+  Eigen::VectorXd z = Eigen::VectorXd::Ones(3);
+  lm.minimize(z);
+  const Eigen::VectorXd expected = reference.parameters(z);
+  for (Eigen::Index i = 0; i < 3; ++i) EXPECT_EQ(c.parameters[i], expected[i]) << "parameter " << i;
+  EXPECT_GT(lm.njev + lm.nfev, 10);  // LM took several steps: the comparison is not of the start
+  EXPECT_NEAR(c.parameters[2], 0.8, 1e-3);
 }
