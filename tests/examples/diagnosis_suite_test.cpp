@@ -14,13 +14,22 @@
 
 using namespace sets;
 
+namespace {
+
+// A plant of the suite diagnosed as the slice runs it: on two threads.
+SuitePlantResult diagnosis_of(const SyntheticPlant& p) {
+  DiagnosisOptions o;
+  o.threads = 2;
+  return run_suite_plant(p, o);
+}
+
+}  // namespace
+
 class RandomSuiteSlice : public ::testing::TestWithParam<unsigned> {};
 
 TEST_P(RandomSuiteSlice, CompletesInventsNothingAndMissesNoConcealedEffect) {
   const SyntheticPlant p = random_plant(GetParam());
-  DiagnosisOptions o;
-  o.threads = 2;
-  const SuitePlantResult r = run_suite_plant(p, o);
+  const SuitePlantResult r = diagnosis_of(p);
   std::string truth, named;
   for (const auto& t : r.truth) truth += t.name + " ";
   for (const auto& n : r.named) named += n + " ";
@@ -182,9 +191,7 @@ TEST(SuiteReport, PerFamilyTableCountsEachPlantInItsFamilyByTheHeadlineRules) {
 TEST(RandomSuiteSlice, ASwitchingMismatchReadAsColouredNoiseIsNotNothingMissing) {
   const SyntheticPlant p = random_plant(5004294u);
   ASSERT_EQ(p.effects.size(), 2u);
-  DiagnosisOptions o;
-  o.threads = 2;
-  const SuitePlantResult r = run_suite_plant(p, o);
+  const SuitePlantResult r = diagnosis_of(p);
   ASSERT_TRUE(r.error.empty()) << r.error;
   EXPECT_NE(r.answer, "nothing_missing");
 }
@@ -198,9 +205,7 @@ TEST(RandomSuiteSlice, ASwitchingMismatchReadAsColouredNoiseIsNotNothingMissing)
 TEST(RandomSuiteSlice, AResidualThatFollowsTheModelsSignalsIsNotNothingMissing) {
   const SyntheticPlant p = random_plant(5009595u);
   ASSERT_EQ(p.effects.size(), 2u);
-  DiagnosisOptions o;
-  o.threads = 2;
-  const SuitePlantResult r = run_suite_plant(p, o);
+  const SuitePlantResult r = diagnosis_of(p);
   ASSERT_TRUE(r.error.empty()) << r.error;
   EXPECT_EQ(r.answer, "missing");
 }
