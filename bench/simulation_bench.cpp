@@ -1,11 +1,13 @@
 // One simulation of a Silverbox-sized record (86 845 samples, what the diagnosis repeats a few
 // thousand times): the linear oscillator with a cubic stiffness, 2 RK4 substeps (the diagnosis'
-// screening step) and 10 (its reported fits), input held or band-limited.
+// screening step) and 10 (its reported fits), input held or band-limited; and a finite-difference
+// Jacobian's four columns, one simulation at a time or side by side (Simulator::simulate_outputs_each).
 //   ./build/bench/simulation_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <vector>
 
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
@@ -47,8 +49,31 @@ void BM_Simulate(benchmark::State& state) {
   state.SetLabel(std::string(state.range(1) ? "bl" : "zoh") + ", " + std::to_string(state.range(0)) + " substeps");
 }
 
+// The four columns of a Jacobian (g, c, k, k3 each moved by 1e-3), 2 substeps, input held: one
+// at a time (range 0 = 0) or side by side (1). The outputs are the same bit for bit.
+void BM_SimulateJacobianColumns(benchmark::State& state) {
+  static const sets::Recording data = record(86845);
+  const sets::Simulator sim(sets::parse_model(kDuffing, "duffing.json"), data, {2});
+  Eigen::MatrixXd columns = sim.parameter_values().replicate(1, 4);
+  for (Eigen::Index j = 0; j < 4; ++j) columns(j, j) *= 1.001;
+  Eigen::MatrixXd y;
+  std::vector<Eigen::MatrixXd> ys;
+  std::vector<bool> ok;
+  for (auto _ : state) {
+    if (state.range(0)) {
+      sim.simulate_outputs_each(columns, ys, ok);
+      benchmark::DoNotOptimize(ys.data());
+    } else {
+      for (Eigen::Index j = 0; j < 4; ++j) sim.simulate_outputs(columns.col(j), y);
+      benchmark::DoNotOptimize(y.data());
+    }
+  }
+  state.SetLabel(state.range(0) ? "side by side" : "one at a time");
+}
+
 }  // namespace
 
+BENCHMARK(BM_SimulateJacobianColumns)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Simulate)->ArgsProduct({{2, 10}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -399,6 +399,25 @@ static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd
     eval_signals();
     for (std::size_t i = 0; i < ns; ++i) I.deriv_lanes[static_cast<std::size_t>(I.deriv_of_state[i])].eval(v.data(), lanes, dx + i * L);
   };
+  // The recorded symbols' past, kept only when prev() reads it: sample, symbol, lane.
+  const std::size_t nr = I.recorded_slots.size();
+  std::vector<double> hist(I.prevs.empty() ? 0 : static_cast<std::size_t>(N) * nr * L);
+  const auto set_prevs = [&](int k) {  // run()'s rule: sample k - n, or sample 0 when there is none yet
+    for (const auto& pr : I.prevs) {
+      const auto h = static_cast<std::size_t>(I.history_index[static_cast<std::size_t>(pr.symbol)]);
+      const int kk = std::max(0, k - pr.lag);
+      if (kk < k) {
+        std::copy_n(hist.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(kk) * nr + h) * L), L, lane(pr.slot));
+        continue;
+      }
+      // At sample 0 only inputs and states are known; a sampled or algebraic signal's own past is 0.
+      bool is_known = false;
+      for (int s : I.input_slots) is_known = is_known || s == pr.symbol;
+      for (int s : I.state_slots) is_known = is_known || s == pr.symbol;
+      if (is_known) std::copy_n(lane(pr.symbol), L, lane(pr.slot));
+      else fill(pr.slot, 0.0);
+    }
+  };
   std::vector<double> x(ns * L), k1(ns * L), k2(ns * L), k3(ns * L), k4(ns * L), xt(ns * L);
   for (std::size_t i = 0; i < ns; ++i) std::fill_n(x.begin() + static_cast<std::ptrdiff_t>(i * L), L, I.initial_state[i]);
   outputs.assign(L, Eigen::MatrixXd(N, static_cast<Eigen::Index>(I.output_slots.size())));
@@ -409,9 +428,13 @@ static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd
     fill(I.t_slot, tk);
     set_inputs(static_cast<std::size_t>(k), 0);
     set_states(x.data());
+    set_prevs(k);
     eval_signals();
     for (std::size_t i = 0; i < I.sampled_lanes.size(); ++i) eval_into(I.sampled_lanes[i], I.sampled_slots[i]);
     eval_signals();  // signals may use sampled values
+    if (!hist.empty())
+      for (std::size_t i = 0; i < nr; ++i)
+        std::copy_n(lane(I.recorded_slots[i]), L, hist.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(k) * nr + i) * L));
     for (std::size_t j = 0; j < I.output_slots.size(); ++j)
       for (std::size_t l = 0; l < L; ++l) outputs[l](k, static_cast<Eigen::Index>(j)) = lane(I.output_slots[j])[l];
     if (k + 1 == N) break;
@@ -493,7 +516,7 @@ void Simulator::simulate_outputs_each(const Eigen::Ref<const Eigen::MatrixXd>& p
     for (std::size_t l = 0; l < outputs.size(); ++l)
       ok[l] = simulate_outputs(parameters.col(static_cast<Eigen::Index>(l)), outputs[l]);
   };
-  if (!I.prevs.empty() || parameters.cols() < 2) return one_by_one();  // prev() keeps a history per run
+  if (parameters.cols() < 2) return one_by_one();
   try {
     run_lanes(I, parameters, outputs, ok);
   } catch (const mu::Parser::exception_type&) {

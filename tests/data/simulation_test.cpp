@@ -122,14 +122,14 @@ TEST(Simulation, AnExpressionThatIsOneSymbolIsThatSymbolsValue) {
 }
 
 TEST(Simulation, RunsSideBySideGiveEachRunsOutputsBitForBit) {
-  // simulate_outputs_each against simulate_outputs column by column: signals, a sampled signal, an
-  // input between samples (foh), a friction-like sign and a condition the runs take differently,
-  // and one run that blows up while the others go on.
+  // simulate_outputs_each against simulate_outputs column by column: signals, a sampled signal with
+  // prev() of a state and of itself, an input between samples (foh), a friction-like sign and a
+  // condition the runs take differently, and one run that blows up while the others go on.
   const ModelFile m = parse_model(R"json({"sample_time": 0.05, "inputs": {"u": "u"},
     "intersample": {"u": "foh"},
     "parameters": {"k": 2.0, "c": 0.3, "Fc": 0.2, "g": 0.0},
     "states": {"x": 0.1, "v": 0.0}, "signals": {"F": "Fc*sign(v) + (x > 0.05 ? c*v : 0.5*c*v)"},
-    "sampled": {"us": "u - 0.1*x"}, "derivatives": {"x": "v", "v": "us - k*x - F + g*v^3"},
+    "sampled": {"us": "u - 0.1*x - 0.05*(x - prev(x, 2))/(2*Ts) + 0.01*prev(us, 1)"}, "derivatives": {"x": "v", "v": "us - k*x - F + g*v^3"},
     "outputs": {"x": "y", "F": "y"}})json", "side_by_side.json");
   Recording r;
   std::vector<double> u(400), y(400, 0.0);
