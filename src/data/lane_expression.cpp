@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <string>
+#include <type_traits>
 
 #include "sets/core/error.hpp"
 
@@ -42,14 +43,26 @@ Lane_expression::Lane_expression(const mu::ParserBase& parser, const std::functi
 
 void Lane_expression::eval(const double* values, int lanes, double* out) const {
   if (stack_.size() < stack_size_ * static_cast<std::size_t>(lanes)) stack_.resize(stack_size_ * static_cast<std::size_t>(lanes));
-  if (eval_together(values, lanes, out)) return;
+  const auto together = [&]() -> bool {
+    switch (lanes) {
+      case 2: return eval_together(values, std::integral_constant<std::size_t, 2>{}, out);
+      case 3: return eval_together(values, std::integral_constant<std::size_t, 3>{}, out);
+      case 4: return eval_together(values, std::integral_constant<std::size_t, 4>{}, out);
+      case 5: return eval_together(values, std::integral_constant<std::size_t, 5>{}, out);
+      case 6: return eval_together(values, std::integral_constant<std::size_t, 6>{}, out);
+      case 7: return eval_together(values, std::integral_constant<std::size_t, 7>{}, out);
+      case 8: return eval_together(values, std::integral_constant<std::size_t, 8>{}, out);
+      default: return eval_together(values, static_cast<std::size_t>(lanes), out);
+    }
+  };
+  if (together()) return;
   for (int l = 0; l < lanes; ++l) out[l] = eval_lane(values, lanes, l);
 }
 
 // All lanes at once, each operation as ParseCmdCodeBulk does it. False where the lanes part at a
 // condition.
-bool Lane_expression::eval_together(const double* values, int lanes, double* out) const {
-  const auto L = static_cast<std::size_t>(lanes);
+template <class Lanes>
+bool Lane_expression::eval_together(const double* values, Lanes L, double* out) const {
   double* s = stack_.data();
   std::size_t top = 0;  // index of the top entry (muparser's sidx)
   const Op* const end = ops_.data() + ops_.size();

@@ -34,7 +34,10 @@ class Lane_expression {
     int offset = 0;      // cmIF, cmELSE: tokens to skip
     mu::generic_callable_type fun{};
   };
-  bool eval_together(const double* values, int lanes, double* out) const;
+  // Lanes: a std::size_t, or a std::integral_constant for the common counts (loops the compiler
+  // unrolls and vectorises).
+  template <class Lanes>
+  bool eval_together(const double* values, Lanes lanes, double* out) const;
   double eval_lane(const double* values, int lanes, int lane) const;
 
   std::vector<Op> ops_;
