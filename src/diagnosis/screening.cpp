@@ -56,6 +56,33 @@ Eigen::VectorXd bounded_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A
 
 namespace {
 
+// Simulations run side by side (Simulator::simulate_outputs_each) ahead of the code that asks for
+// them one at a time: a parameter vector asked for again gets the outputs simulating it gives,
+// bit for bit; any other is simulated.
+class Simulated_ahead {
+ public:
+  Simulated_ahead(const Simulator& s, std::vector<Eigen::VectorXd> ps) : s_(s), ps_(std::move(ps)) {
+    if (ps_.empty()) return;
+    Eigen::MatrixXd columns(ps_.front().size(), static_cast<Eigen::Index>(ps_.size()));
+    for (std::size_t i = 0; i < ps_.size(); ++i) columns.col(static_cast<Eigen::Index>(i)) = ps_[i];
+    s_.simulate_outputs_each(columns, ys_, ok_);
+  }
+  bool simulate_outputs(const Eigen::VectorXd& p, Eigen::MatrixXd& y) const {
+    for (std::size_t i = 0; i < ps_.size(); ++i)
+      if (ps_[i].size() == p.size() && ps_[i] == p) {
+        y = ys_[i];
+        return ok_[i];
+      }
+    return s_.simulate_outputs(p, y);
+  }
+
+ private:
+  const Simulator& s_;
+  std::vector<Eigen::VectorXd> ps_;
+  std::vector<Eigen::MatrixXd> ys_;
+  std::vector<bool> ok_;
+};
+
 // Outputs stacked (output after output), each divided by ||y_j - mean y_j||: the calibration's cost.
 Eigen::VectorXd weighted(const Eigen::MatrixXd& M, const Eigen::VectorXd& w) {
   const Eigen::Index N = M.rows();
@@ -71,14 +98,20 @@ struct Around {  // the current model, around which every hypothesis is linearis
   Eigen::MatrixXd J;  // weighted sensitivities to the current free parameters
 };
 
+// The parameters of a sensitivity's simulation: p with parameter i moved by step.
+Eigen::VectorXd moved(const Eigen::VectorXd& p, int i, double step) {
+  Eigen::VectorXd q = p;
+  q[i] += step;
+  return q;
+}
+
 // Sensitivity of the (weighted) outputs to parameter i at p, forward difference; the step is
 // enlarged when it moves the outputs by less than round-off. Empty when it cannot be simulated.
-Eigen::VectorXd sensitivity(const Simulator& s, const Eigen::VectorXd& p, int i, double step, const Eigen::MatrixXd& y,
+Eigen::VectorXd sensitivity(const Simulated_ahead& s, const Eigen::VectorXd& p, int i, double step, const Eigen::MatrixXd& y,
                             const Eigen::VectorXd& w, int& sims) {
   Eigen::MatrixXd y1;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    Eigen::VectorXd q = p;
-    q[i] += step;
+    const Eigen::VectorXd q = moved(p, i, step);
     ++sims;
     if (!s.simulate_outputs(q, y1) || !y1.allFinite()) {
       step = -step;
@@ -125,19 +158,37 @@ struct GridFit {
   Eigen::MatrixXd A;
 };
 
-std::optional<GridFit> fit_grid_point(const Around& a, const Candidate& c, const CandidateLayout& L, Simulator& s,
-                                      const Eigen::VectorXd& base, const Eigen::VectorXd& R, const std::vector<double>& g,
-                                      int& sims) {
-  const std::vector<int>& ni = L.new_index;
+// The parameters at grid point g: the linear new ones at 0, the nonlinear ones on the grid.
+Eigen::VectorXd grid_point(const Candidate& c, const CandidateLayout& L, const Eigen::VectorXd& base,
+                           const std::vector<double>& g) {
   Eigen::VectorXd p = base;
   std::size_t gi = 0;
   for (std::size_t k = 0; k < c.parameters.size(); ++k) {
-    if (c.linear[k]) p[ni[k]] = 0.0;
-    else if (gi < g.size()) p[ni[k]] = g[gi++];
+    if (c.linear[k]) p[L.new_index[k]] = 0.0;
+    else if (gi < g.size()) p[L.new_index[k]] = g[gi++];
   }
-  const bool has_linear = std::find(c.linear.begin(), c.linear.end(), true) != c.linear.end();
+  return p;
+}
+
+// Whether the grid point is simulated (with only linear new parameters, at 0, it is the current
+// model).
+bool simulates_grid_point(const Candidate& c) {
+  return !c.grid.empty() || std::find(c.linear.begin(), c.linear.end(), true) == c.linear.end();
+}
+
+// The first step of the sensitivity to new parameter k at grid point p.
+double sensitivity_step(const Candidate& c, const CandidateLayout& L, const Eigen::VectorXd& p, std::size_t k) {
+  const double scale = c.scales[k] > 0 ? c.scales[k] : 1.0;
+  return c.linear[k] ? 1e-3 * scale : 1e-2 * std::max(std::abs(p[L.new_index[k]]), 1e-3 * scale);
+}
+
+std::optional<GridFit> fit_grid_point(const Around& a, const Candidate& c, const CandidateLayout& L, const Simulated_ahead& s,
+                                      const Eigen::VectorXd& base, const Eigen::VectorXd& R, const std::vector<double>& g,
+                                      int& sims) {
+  const std::vector<int>& ni = L.new_index;
+  const Eigen::VectorXd p = grid_point(c, L, base, g);
   Eigen::MatrixXd yg = a.y0;
-  if (!c.grid.empty() || !has_linear) {
+  if (simulates_grid_point(c)) {
     ++sims;
     if (!s.simulate_outputs(p, yg) || !yg.allFinite()) return std::nullopt;
   }
@@ -149,9 +200,7 @@ std::optional<GridFit> fit_grid_point(const Around& a, const Candidate& c, const
   for (Eigen::Index k = 0; k < q0; ++k) A.col(k) = a.J.col(L.cur_cols[static_cast<std::size_t>(k)]);
   for (std::size_t k = 0; k < c.parameters.size(); ++k) {
     const Eigen::Index col = q0 + static_cast<Eigen::Index>(k);
-    const double scale = c.scales[k] > 0 ? c.scales[k] : 1.0;
-    const double step = c.linear[k] ? 1e-3 * scale : 1e-2 * std::max(std::abs(p[ni[k]]), 1e-3 * scale);
-    const Eigen::VectorXd sk = sensitivity(s, p, ni[k], step, yg, a.w, sims);
+    const Eigen::VectorXd sk = sensitivity(s, p, ni[k], sensitivity_step(c, L, p, k), yg, a.w, sims);
     if (sk.size() == 0) return std::nullopt;
     A.col(col) = sk;
     const auto& mp = c.model.parameters[static_cast<std::size_t>(ni[k])];
@@ -225,9 +274,18 @@ ScreenedHypothesis screen_one(const Around& a, const Recording& data, const Cand
   const CandidateLayout L = layout_of(a, c, s);
   const Eigen::VectorXd base = s.parameter_values();
   const Eigen::VectorXd R = weighted(a.Y - a.y0, a.w);
+  const auto grid = c.grid.empty() ? std::vector<std::vector<double>>{{}} : c.grid;
+  // Every grid point and the first simulation of each of its sensitivities, side by side.
+  std::vector<Eigen::VectorXd> first;
+  for (const auto& g : grid) {
+    const Eigen::VectorXd p = grid_point(c, L, base, g);
+    if (simulates_grid_point(c)) first.push_back(p);
+    for (std::size_t k = 0; k < c.parameters.size(); ++k) first.push_back(moved(p, L.new_index[k], sensitivity_step(c, L, p, k)));
+  }
+  const Simulated_ahead ahead(s, std::move(first));
   std::vector<GridFit> done;
-  for (const auto& g : c.grid.empty() ? std::vector<std::vector<double>>{{}} : c.grid)
-    if (auto fit = fit_grid_point(a, c, L, s, base, R, g, sims)) done.push_back(std::move(*fit));
+  for (const auto& g : grid)
+    if (auto fit = fit_grid_point(a, c, L, ahead, base, R, g, sims)) done.push_back(std::move(*fit));
   if (done.empty()) {
     h.note = "could not be simulated";
     return h;
@@ -414,15 +472,18 @@ Screening screen_hypotheses(const ModelFile& current, const Recording& data, con
     a.w[j] = den > 0 ? 1 / den : 1.0;
   }
   const Eigen::VectorXd p0 = s.parameter_values();
-  if (!s.simulate_outputs(p0, a.y0)) return out;
-  ++out.simulations;
   const std::vector<int> free = s.free_parameters();
+  const auto step = [&](std::size_t k) { return 1e-4 * (std::abs(p0[free[k]]) > 0 ? std::abs(p0[free[k]]) : 1.0); };
+  std::vector<Eigen::VectorXd> first{p0};  // the current model and its sensitivities' first steps, side by side
+  for (std::size_t k = 0; k < free.size(); ++k) first.push_back(moved(p0, free[k], step(k)));
+  const Simulated_ahead ahead(s, std::move(first));
+  if (!ahead.simulate_outputs(p0, a.y0)) return out;
+  ++out.simulations;
   const std::vector<std::string> names = s.parameter_names();
   a.J.resize(a.Y.size(), static_cast<Eigen::Index>(free.size()));
   for (std::size_t k = 0; k < free.size(); ++k) {
     a.free_names.push_back(names[static_cast<std::size_t>(free[k])]);
-    const double scale = std::abs(p0[free[k]]) > 0 ? std::abs(p0[free[k]]) : 1.0;
-    Eigen::VectorXd sk = sensitivity(s, p0, free[k], 1e-4 * scale, a.y0, a.w, out.simulations);
+    Eigen::VectorXd sk = sensitivity(ahead, p0, free[k], step(k), a.y0, a.w, out.simulations);
     a.J.col(static_cast<Eigen::Index>(k)) = sk.size() ? sk : Eigen::VectorXd::Zero(a.Y.size());
   }
   const Eigen::VectorXd R = weighted(a.Y - a.y0, a.w);
