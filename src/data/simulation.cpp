@@ -126,6 +126,13 @@ struct Simulator::Impl {
     }
   }
 
+  // Whether a symbol has a value at sample 0 before any expression runs: inputs and states do; a
+  // sampled or algebraic signal's own past there is 0 (prev()'s rule at the first sample).
+  bool known_at_start(int slot) const {
+    return std::find(input_slots.begin(), input_slots.end(), slot) != input_slots.end() ||
+           std::find(state_slots.begin(), state_slots.end(), slot) != state_slots.end();
+  }
+
   void eval_signals() {
     for (std::size_t i = 0; i < signal_expr.size(); ++i) *signal_ptr[i] = signal_expr[i].eval();
   }
@@ -307,12 +314,8 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
       if (kk < k) {
         v = hist[static_cast<std::size_t>(kk) * nr + static_cast<std::size_t>(h)];
       } else {
-        // At sample 0 only inputs and states are known; a sampled or algebraic signal's own past is 0.
         v = I.slots[static_cast<std::size_t>(pr.symbol)];
-        bool is_known = false;
-        for (int s : I.input_slots) is_known = is_known || s == pr.symbol;
-        for (int s : I.state_slots) is_known = is_known || s == pr.symbol;
-        if (!is_known) v = 0.0;
+        if (!I.known_at_start(pr.symbol)) v = 0.0;
       }
       I.slots[static_cast<std::size_t>(pr.slot)] = v;
     }
@@ -410,11 +413,7 @@ static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd
         std::copy_n(hist.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(kk) * nr + h) * L), L, lane(pr.slot));
         continue;
       }
-      // At sample 0 only inputs and states are known; a sampled or algebraic signal's own past is 0.
-      bool is_known = false;
-      for (int s : I.input_slots) is_known = is_known || s == pr.symbol;
-      for (int s : I.state_slots) is_known = is_known || s == pr.symbol;
-      if (is_known) std::copy_n(lane(pr.symbol), L, lane(pr.slot));
+      if (I.known_at_start(pr.symbol)) std::copy_n(lane(pr.symbol), L, lane(pr.slot));
       else fill(pr.slot, 0.0);
     }
   };
