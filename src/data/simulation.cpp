@@ -370,9 +370,11 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
 // each lane's arithmetic as run()'s, so each lane's outputs are bit for bit those of run() with its
 // column. A lane that blows up is marked and carried on with the others. Slots start as run()
 // would find them and end as the last lane leaves them (a signal that reads a later one reads the
-// value left by the run before, as in run()).
+// value left by the run before, as in run()). `schedules` (one per lane, or empty for none): as
+// run()'s schedule, lane by lane.
 static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd>& params,
-                      std::vector<Eigen::MatrixXd>& outputs, std::vector<bool>& ok) {
+                      const std::vector<Eigen::MatrixXd>& schedules, std::vector<Eigen::MatrixXd>& outputs,
+                      std::vector<bool>& ok) {
   const int N = static_cast<int>(I.time.size());
   const auto L = static_cast<std::size_t>(params.cols());
   const int lanes = static_cast<int>(L);
@@ -425,6 +427,9 @@ static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd
   for (int k = 0; k < N && live > 0; ++k) {
     const double tk = I.time[static_cast<std::size_t>(k)];
     fill(I.t_slot, tk);
+    if (!schedules.empty())
+      for (std::size_t i = 0; i < I.param_slots.size(); ++i)
+        for (std::size_t l = 0; l < L; ++l) lane(I.param_slots[i])[l] = schedules[l](k, static_cast<Eigen::Index>(i));
     set_inputs(static_cast<std::size_t>(k), 0);
     set_states(x.data());
     set_prevs(k);
@@ -491,12 +496,18 @@ bool Simulator::simulate_outputs(const Eigen::Ref<const Eigen::VectorXd>& parame
   }
 }
 
+// The schedule's size, checked before a run.
+static void check_schedule(const Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd>& schedule) {
+  const auto samples = static_cast<Eigen::Index>(I.time.size());
+  if (schedule.rows() != samples || schedule.cols() != static_cast<Eigen::Index>(I.param_slots.size()))
+    throw InputError("parameter schedule is " + std::to_string(schedule.rows()) + " x " + std::to_string(schedule.cols()) +
+                     ", expected samples x parameters = " + std::to_string(samples) + " x " +
+                     std::to_string(I.param_slots.size()));
+}
+
 bool Simulator::simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixXd>& schedule,
                                            Eigen::MatrixXd& outputs) const {
-  if (schedule.rows() != samples() || schedule.cols() != static_cast<Eigen::Index>(impl_->param_slots.size()))
-    throw InputError("parameter schedule is " + std::to_string(schedule.rows()) + " x " + std::to_string(schedule.cols()) +
-                     ", expected samples x parameters = " + std::to_string(samples()) + " x " +
-                     std::to_string(impl_->param_slots.size()));
+  check_schedule(*impl_, schedule);
   try {
     Eigen::MatrixXd unused;
     return run(*impl_, schedule.row(0).transpose(), outputs, false, unused, schedule).ok;
@@ -505,22 +516,42 @@ bool Simulator::simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixX
   }
 }
 
+// Runs `runs` side by side (run_lanes); when muparser throws, each run alone by `one`, so that
+// only the run that throws fails, as it would alone.
+template <class One>
+static void side_by_side(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd>& params,
+                         const std::vector<Eigen::MatrixXd>& schedules, std::vector<Eigen::MatrixXd>& outputs,
+                         std::vector<bool>& ok, const One& one) {
+  const auto one_by_one = [&] {
+    outputs.assign(static_cast<std::size_t>(params.cols()), Eigen::MatrixXd());
+    ok.assign(outputs.size(), false);
+    for (std::size_t l = 0; l < outputs.size(); ++l) ok[l] = one(l, outputs[l]);
+  };
+  if (params.cols() < 2) return one_by_one();
+  try {
+    run_lanes(I, params, schedules, outputs, ok);
+  } catch (const mu::Parser::exception_type&) {
+    one_by_one();
+  }
+}
+
 void Simulator::simulate_outputs_each(const Eigen::Ref<const Eigen::MatrixXd>& parameters,
                                       std::vector<Eigen::MatrixXd>& outputs, std::vector<bool>& ok) const {
-  auto& I = *impl_;
-  if (parameters.rows() != static_cast<Eigen::Index>(I.param_slots.size())) throw InputError("wrong number of parameters");
-  const auto one_by_one = [&] {
-    outputs.assign(static_cast<std::size_t>(parameters.cols()), Eigen::MatrixXd());
-    ok.assign(outputs.size(), false);
-    for (std::size_t l = 0; l < outputs.size(); ++l)
-      ok[l] = simulate_outputs(parameters.col(static_cast<Eigen::Index>(l)), outputs[l]);
-  };
-  if (parameters.cols() < 2) return one_by_one();
-  try {
-    run_lanes(I, parameters, outputs, ok);
-  } catch (const mu::Parser::exception_type&) {
-    one_by_one();  // as simulate_outputs: the lane that throws fails, the others do not
+  if (parameters.rows() != static_cast<Eigen::Index>(impl_->param_slots.size())) throw InputError("wrong number of parameters");
+  side_by_side(*impl_, parameters, {}, outputs, ok, [&](std::size_t l, Eigen::MatrixXd& y) {
+    return simulate_outputs(parameters.col(static_cast<Eigen::Index>(l)), y);
+  });
+}
+
+void Simulator::simulate_outputs_scheduled_each(const std::vector<Eigen::MatrixXd>& schedules,
+                                                std::vector<Eigen::MatrixXd>& outputs, std::vector<bool>& ok) const {
+  Eigen::MatrixXd first(impl_->param_slots.size(), schedules.size());
+  for (std::size_t l = 0; l < schedules.size(); ++l) {
+    check_schedule(*impl_, schedules[l]);
+    first.col(static_cast<Eigen::Index>(l)) = schedules[l].row(0).transpose();
   }
+  side_by_side(*impl_, first, schedules, outputs, ok,
+               [&](std::size_t l, Eigen::MatrixXd& y) { return simulate_outputs_scheduled(schedules[l], y); });
 }
 
 void check_model(const ModelFile& model, const Recording& data) { Simulator s(model, data, {1}); }

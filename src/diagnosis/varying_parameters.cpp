@@ -57,36 +57,52 @@ class VaryingParameterSearch {
   }
 
   // Column (i, s) of xi_[i]: d(features)/d(pi_i over segment s), pi in units of scale_i, by finite
-  // differences of the simulation (S x q runs). False when a simulation fails.
+  // differences of the simulation (S x q runs, side by side in groups of up to 8). False when a
+  // simulation fails.
   bool sensitivities(const Recording& est, int substeps, int threads) {
     const int q = static_cast<int>(free_.size()), S = seg_.segments();
     xi_.assign(static_cast<std::size_t>(q), Eigen::MatrixXd::Zero((S + 1) * l_, S));
     Eigen::MatrixXd y0;
     if (!Simulator(model_, est, {substeps}).simulate_outputs(p_, y0)) return false;
-    std::vector<char> simulated(static_cast<std::size_t>(q * S), 0);
+    // As many groups as fill every thread, each of at most 8 runs.
+    const auto columns = static_cast<std::size_t>(q * S), per_thread = static_cast<std::size_t>(std::max(1, threads));
+    const std::size_t groups = std::min(columns, (columns + 8 * per_thread - 1) / (8 * per_thread) * per_thread);
+    std::vector<char> simulated(groups, 0);
     run_jobs_with(
-        threads, simulated.size(), [&] { return std::make_unique<Simulator>(model_, est, SimulationOptions{substeps}); },
-        [&](const std::unique_ptr<Simulator>& sim, std::size_t job) {
-          simulated[job] = sensitivity_column(*sim, y0, static_cast<int>(job) / S, static_cast<int>(job) % S);
+        threads, groups, [&] { return std::make_unique<Simulator>(model_, est, SimulationOptions{substeps}); },
+        [&](const std::unique_ptr<Simulator>& sim, std::size_t g) {
+          const std::size_t from = columns * g / groups, to = columns * (g + 1) / groups;
+          std::vector<Eigen::MatrixXd> schedules, y1;
+          for (std::size_t c = from; c < to; ++c) schedules.push_back(schedule_of(static_cast<int>(c) / S, static_cast<int>(c) % S));
+          std::vector<bool> ok;
+          sim->simulate_outputs_scheduled_each(schedules, y1, ok);
+          simulated[g] = std::all_of(ok.begin(), ok.end(), [](bool b) { return b; });
+          for (std::size_t c = from; c < to && simulated[g]; ++c)
+            sensitivity_column(y1[c - from], y0, static_cast<int>(c) / S, static_cast<int>(c) % S);
         });
     return std::all_of(simulated.begin(), simulated.end(), [](char c) { return c != 0; });
   }
 
-  // Column s of xi_[i]: parameter i perturbed by 1 % of its scale over segment s only.
-  bool sensitivity_column(Simulator& sim, const Eigen::MatrixXd& y0, int i, int s) {
+  // The calibrated values with parameter i moved by step(i) over segment s only.
+  Eigen::MatrixXd schedule_of(int i, int s) const {
+    const int S = seg_.segments();
+    Eigen::MatrixXd sched = p_.transpose().replicate(seg_.start(S), 1);
+    sched.col(free_[static_cast<std::size_t>(i)]).segment(seg_.start(s), seg_.start(s + 1) - seg_.start(s)).array() += step(i);
+    return sched;
+  }
+  double step(int i) const { return 1e-2 * scale_[static_cast<std::size_t>(i)]; }  // 1 % of the scale
+
+  // Column s of xi_[i] from the outputs y1 of schedule_of(i, s).
+  void sensitivity_column(Eigen::MatrixXd& y1, const Eigen::MatrixXd& y0, int i, int s) {
     const int S = seg_.segments();
     const Eigen::Index m = seg_.parts();
-    const double h = 1e-2 * scale_[static_cast<std::size_t>(i)];
-    Eigen::MatrixXd sched = p_.transpose().replicate(seg_.start(S), 1), y1;
-    sched.col(free_[static_cast<std::size_t>(i)]).segment(seg_.start(s), seg_.start(s + 1) - seg_.start(s)).array() += h;
-    if (!sim.simulate_outputs_scheduled(sched, y1)) return false;
+    const double h = step(i);
     y1 -= y0;
     for (int k = s; k < S; ++k)  // causal: segment s acts on segments s, s + 1, ...
       for (Eigen::Index o = 0; o < ny_; ++o)
         for (Eigen::Index j = 0; j < m; ++j)
           xi_[static_cast<std::size_t>(i)]((k + 1) * l_ + o * m + j, s) =
               seg_.mean(y1, o, k, j) / h * scale_[static_cast<std::size_t>(i)] / sigma_[o];
-    return true;
   }
 
   // One parameter's estimate (l-inf, then sparse); nothing when it cannot be computed.

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sets/core/error.hpp"
 #include "sets/data/recording.hpp"
 #include "sets/data/simulation.hpp"
 #include "sets/models/model_file.hpp"
@@ -121,21 +122,32 @@ TEST(Simulation, AnExpressionThatIsOneSymbolIsThatSymbolsValue) {
   EXPECT_NEAR(s.simulate(p).series("v")[8], 1 - 2.0, 1e-12);
 }
 
-TEST(Simulation, RunsSideBySideGiveEachRunsOutputsBitForBit) {
-  // simulate_outputs_each against simulate_outputs column by column: signals, a sampled signal with
-  // prev() of a state and of itself, an input between samples (foh), a friction-like sign and a
-  // condition the runs take differently, and one run that blows up while the others go on.
-  const ModelFile m = parse_model(R"json({"sample_time": 0.05, "inputs": {"u": "u"},
+// A model with signals, a sampled signal with prev() of a state and of itself, an input between
+// samples (foh), a friction-like sign and a condition runs can take differently; g*v^3 blows up
+// for a large g.
+ModelFile side_by_side_model() {
+  return parse_model(R"json({"sample_time": 0.05, "inputs": {"u": "u"},
     "intersample": {"u": "foh"},
     "parameters": {"k": 2.0, "c": 0.3, "Fc": 0.2, "g": 0.0},
     "states": {"x": 0.1, "v": 0.0}, "signals": {"F": "Fc*sign(v) + (x > 0.05 ? c*v : 0.5*c*v)"},
     "sampled": {"us": "u - 0.1*x - 0.05*(x - prev(x, 2))/(2*Ts) + 0.01*prev(us, 1)"}, "derivatives": {"x": "v", "v": "us - k*x - F + g*v^3"},
     "outputs": {"x": "y", "F": "y"}})json", "side_by_side.json");
+}
+
+Recording side_by_side_recording() {
   Recording r;
   std::vector<double> u(400), y(400, 0.0);
   for (std::size_t k = 0; k < u.size(); ++k) u[k] = std::sin(0.07 * static_cast<double>(k)) + (k % 37 < 5 ? 1.0 : 0.0);
   r.add("u", u);
   r.add("y", y);
+  return r;
+}
+
+TEST(Simulation, RunsSideBySideGiveEachRunsOutputsBitForBit) {
+  // simulate_outputs_each against simulate_outputs column by column, one run blowing up while the
+  // others go on.
+  const ModelFile m = side_by_side_model();
+  const Recording r = side_by_side_recording();
   const Simulator s(m, r, {2});
   Eigen::MatrixXd p(4, 5);
   p.col(0) << 2.0, 0.3, 0.2, 0.0;
@@ -156,4 +168,34 @@ TEST(Simulation, RunsSideBySideGiveEachRunsOutputsBitForBit) {
   EXPECT_FALSE(ok[3]);
   EXPECT_TRUE(ok[0] && ok[1] && ok[2] && ok[4]);
   EXPECT_FALSE(each[0] == each[1]);  // the runs are not one run copied
+}
+
+TEST(Simulation, ScheduledRunsSideBySideGiveEachRunsOutputsBitForBit) {
+  // simulate_outputs_scheduled_each against simulate_outputs_scheduled schedule by schedule:
+  // parameters that step, ramp and alternate, each run its own way, one blowing up late.
+  const ModelFile m = side_by_side_model();
+  const Recording r = side_by_side_recording();
+  const Simulator s(m, r, {2});
+  const Eigen::Index N = s.samples();
+  Eigen::RowVector4d p0(2.0, 0.3, 0.2, 0.0);
+  std::vector<Eigen::MatrixXd> schedules(4, p0.replicate(N, 1));
+  schedules[1].col(0).segment(100, 100).array() += 0.02;                               // k steps up, then back
+  schedules[2].col(1) = Eigen::VectorXd::LinSpaced(N, 0.3, 0.9);                       // c ramps
+  for (Eigen::Index k = 0; k < N; k += 2) schedules[3](k, 2) = 0.6;                    // Fc alternates
+  schedules.push_back(schedules[0]);
+  schedules[4].col(3).tail(N - 200).setConstant(5e3);                                 // g: blows up late
+  std::vector<Eigen::MatrixXd> each;
+  std::vector<bool> ok;
+  s.simulate_outputs_scheduled_each(schedules, each, ok);
+  ASSERT_EQ(each.size(), schedules.size());
+  for (std::size_t j = 0; j < schedules.size(); ++j) {
+    Eigen::MatrixXd alone;
+    const bool alone_ok = s.simulate_outputs_scheduled(schedules[j], alone);
+    EXPECT_EQ(ok[j], alone_ok) << "run " << j;
+    if (alone_ok) EXPECT_TRUE(each[j] == alone) << "run " << j;  // exact equality
+  }
+  EXPECT_TRUE(ok[0] && ok[1] && ok[2] && ok[3]);
+  EXPECT_FALSE(ok[4]);
+  for (std::size_t j = 1; j < 4; ++j) EXPECT_FALSE(each[0] == each[j]) << "run " << j;  // each schedule counts
+  EXPECT_THROW(s.simulate_outputs_scheduled_each({Eigen::MatrixXd::Zero(N - 1, 4)}, each, ok), InputError);
 }

@@ -67,6 +67,10 @@ class Simulator {
   /// values used from sample k to sample k+1 (and by the sampled signals at k). Returns false on
   /// blow-up; InputError if the schedule has the wrong size.
   bool simulate_outputs_scheduled(const Eigen::Ref<const Eigen::MatrixXd>& schedule, Eigen::MatrixXd& outputs) const;
+  /// simulate_outputs_scheduled for each schedule, run side by side as simulate_outputs_each:
+  /// outputs[j] and ok[j] are bit for bit what simulate_outputs_scheduled gives for schedules[j].
+  void simulate_outputs_scheduled_each(const std::vector<Eigen::MatrixXd>& schedules, std::vector<Eigen::MatrixXd>& outputs,
+                                       std::vector<bool>& ok) const;
 
   struct Impl;  // muparser state (kept out of this header)
 
