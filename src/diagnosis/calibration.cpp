@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 namespace sets {
@@ -40,8 +41,23 @@ struct Residual {
     Eigen::MatrixXd yhat;
     bool ok = false;
   };
-  mutable std::array<Simulated, 2> recent;
-  mutable std::size_t next = 0;
+  class Recent {
+   public:
+    std::shared_ptr<Simulated> find(const Eigen::VectorXd& p) const {
+      for (const auto& r : kept_)
+        if (r && r->p.size() == p.size() && r->p == p) return r;
+      return nullptr;
+    }
+    void keep(std::shared_ptr<Simulated> s) {  // in place of the older one
+      kept_[next_] = std::move(s);
+      next_ = (next_ + 1) % kept_.size();
+    }
+
+   private:
+    std::array<std::shared_ptr<Simulated>, 2> kept_;
+    std::size_t next_ = 0;
+  };
+  mutable Recent recent;
 
   int inputs() const { return static_cast<int>(free.size()); }
   int values() const { return static_cast<int>(sim->measured().size()); }
@@ -55,16 +71,21 @@ struct Residual {
     return p;
   }
 
-  const Simulated& simulated(const Eigen::VectorXd& p) const {
-    for (const auto& r : recent)
-      if (r.p.size() == p.size() && r.p == p) return r;
-    Simulated& r = recent[next];
-    next = (next + 1) % recent.size();
+  // A simulation not in `recent` yet, counted (its outputs still to come) and kept there.
+  std::shared_ptr<Simulated> counted(const Eigen::VectorXd& p) const {
+    auto s = std::make_shared<Simulated>();
+    s->p = p;
+    recent.keep(s);
     ++*evaluations;
     if (*progress && *progress) (*progress)(*evaluations);
-    r.p = p;
-    r.ok = sim->simulate_outputs(p, r.yhat) && r.yhat.allFinite();
-    return r;
+    return s;
+  }
+
+  std::shared_ptr<Simulated> simulated(const Eigen::VectorXd& p) const {
+    if (auto s = recent.find(p)) return s;
+    auto s = counted(p);
+    s->ok = sim->simulate_outputs(p, s->yhat) && s->yhat.allFinite();
+    return s;
   }
 
   // The residual of a simulation: weighted output error, or a large finite one where it blew up
@@ -81,77 +102,52 @@ struct Residual {
   }
 
   int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& f) const {
-    residual_of(simulated(parameters(z)), f);
+    residual_of(*simulated(parameters(z)), f);
     return 0;
   }
 
   // Eigen::NumericalDiff's forward differences, bit for bit: f(z) (simulated already: the cache),
-  // then column j from z + h_j e_j, h_j = sqrt(epsfcn) |z_j| (sqrt(epsfcn) at 0). The columns'
-  // simulations that the cache of the last two does not serve run side by side
-  // (Simulator::simulate_outputs_each); the cache, the count and the progress calls end as the
-  // columns one after the other would leave them. Returns NumericalDiff's count for maxfev.
+  // then column j from z + h_j e_j, h_j = sqrt(epsfcn) |z_j| (sqrt(epsfcn) at 0). The columns are
+  // looked up and kept in the cache in column order, as one after the other would be, and those it
+  // does not serve run side by side (Simulator::simulate_outputs_each). Returns NumericalDiff's
+  // count for maxfev.
   double epsfcn = 0;
   int df(const Eigen::VectorXd& z, Eigen::MatrixXd& jac) const {
     const Eigen::Index n = z.size();
     const double eps = std::sqrt(std::max(epsfcn, Eigen::NumTraits<double>::epsilon()));
     Eigen::VectorXd f0(values()), f1(values());
     (*this)(z, f0);
-    std::vector<Eigen::VectorXd> p(static_cast<std::size_t>(n));
     std::vector<double> h(static_cast<std::size_t>(n));
+    std::vector<std::shared_ptr<Simulated>> column(h.size()), to_run;
     for (Eigen::Index j = 0; j < n; ++j) {
       const auto jj = static_cast<std::size_t>(j);
       h[jj] = eps * std::abs(z[j]);
       if (h[jj] == 0.) h[jj] = eps;
       Eigen::VectorXd zj = z;
       zj[j] += h[jj];
-      p[jj] = parameters(zj);
+      const Eigen::VectorXd p = parameters(zj);
+      column[jj] = recent.find(p);
+      if (!column[jj]) to_run.push_back(column[jj] = counted(p));
     }
-    // The cache replayed in column order: held[r] is -1 - r for recent[r] as it is now, or the
-    // column whose simulation took that place.
-    std::array<int, 2> held{-1, -2};
-    std::size_t at = next;
-    std::vector<int> source(static_cast<std::size_t>(n));
-    std::vector<int> to_run;
-    for (std::size_t j = 0; j < p.size(); ++j) {
-      int found = 0;
-      bool hit = false;
-      for (int r : held) {
-        const Eigen::VectorXd& q = r < 0 ? recent[static_cast<std::size_t>(-1 - r)].p : p[static_cast<std::size_t>(r)];
-        if (!hit && q.size() == p[j].size() && q == p[j]) hit = true, found = r;
-      }
-      if (!hit) {
-        found = static_cast<int>(j);
-        to_run.push_back(found);
-        held[at] = found;
-        at = (at + 1) % held.size();
-        ++*evaluations;
-        if (*progress && *progress) (*progress)(*evaluations);
-      }
-      source[j] = found;
-    }
-    Eigen::MatrixXd columns(base.size(), static_cast<Eigen::Index>(to_run.size()));
-    for (std::size_t i = 0; i < to_run.size(); ++i) columns.col(static_cast<Eigen::Index>(i)) = p[static_cast<std::size_t>(to_run[i])];
-    std::vector<Eigen::MatrixXd> outputs;
-    std::vector<bool> ok;
-    if (!to_run.empty()) sim->simulate_outputs_each(columns, outputs, ok);
-    std::vector<Simulated> ran(p.size());
-    for (std::size_t i = 0; i < to_run.size(); ++i) {
-      Simulated& r = ran[static_cast<std::size_t>(to_run[i])];
-      r.p = p[static_cast<std::size_t>(to_run[i])];
-      r.yhat = std::move(outputs[i]);
-      r.ok = ok[i] && r.yhat.allFinite();
-    }
-    const auto simulation = [&](int r) -> const Simulated& {
-      return r < 0 ? recent[static_cast<std::size_t>(-1 - r)] : ran[static_cast<std::size_t>(r)];
-    };
+    simulate_side_by_side(to_run);
     for (Eigen::Index j = 0; j < n; ++j) {
-      residual_of(simulation(source[static_cast<std::size_t>(j)]), f1);
+      residual_of(*column[static_cast<std::size_t>(j)], f1);
       jac.col(j) = (f1 - f0) / h[static_cast<std::size_t>(j)];
     }
-    const std::array<Simulated, 2> kept{simulation(held[0]), simulation(held[1])};
-    recent = kept;
-    next = at;
     return static_cast<int>(n) + 1;
+  }
+
+  void simulate_side_by_side(const std::vector<std::shared_ptr<Simulated>>& runs) const {
+    if (runs.empty()) return;
+    Eigen::MatrixXd columns(base.size(), static_cast<Eigen::Index>(runs.size()));
+    for (std::size_t i = 0; i < runs.size(); ++i) columns.col(static_cast<Eigen::Index>(i)) = runs[i]->p;
+    std::vector<Eigen::MatrixXd> outputs;
+    std::vector<bool> ok;
+    sim->simulate_outputs_each(columns, outputs, ok);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      runs[i]->yhat = std::move(outputs[i]);
+      runs[i]->ok = ok[i] && runs[i]->yhat.allFinite();
+    }
   }
 };
 
@@ -217,9 +213,9 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::
   res.progress = &options.progress;
   Eigen::VectorXd z(n);
   for (Eigen::Index i = 0; i < n; ++i) z[i] = start[free[static_cast<std::size_t>(i)]] / res.scale[i];
+  // LM starts where `r` was simulated (when z * scale rounds back to it).
+  res.recent.keep(std::make_shared<Residual::Simulated>(Residual::Simulated{start, r.outputs, true}));
   // Step 1e-3 of each scaled parameter: friction signs make the cost rough at the 1e-8 level.
-  res.recent[0] = {start, r.outputs, true};  // LM starts where `r` was simulated (when z * scale rounds back to it)
-  res.next = 1;
   res.epsfcn = 1e-6;
   Eigen::LevenbergMarquardt<Residual> lm(res);
   lm.parameters.maxfev = std::max(1, options.max_evaluations / static_cast<int>(n + 1));
@@ -228,8 +224,8 @@ CalibrationResult calibrate(const Simulator& sim, const Eigen::Ref<const Eigen::
   lm.parameters.factor = 10;
   const auto status = lm.minimize(z);
   const Eigen::VectorXd best = res.parameters(z);
-  const auto& at_best = res.simulated(best);  // LM's last accepted point: simulated already
-  CalibrationResult out = result_of(sim, best, at_best.yhat, at_best.ok);
+  const auto at_best = res.simulated(best);  // LM's last accepted point: simulated already
+  CalibrationResult out = result_of(sim, best, at_best->yhat, at_best->ok);
   out.free = free;
   out.evaluations = evaluations;
   // Eigen counts the Jacobian's simulations in maxfev too: a budget of max_evaluations / (n + 1)
