@@ -280,6 +280,32 @@ struct Run {
   std::string state_fail;
 };
 
+// One classical RK4 substep of x over [tt, tt + h], s-th of its sample interval. x holds one state
+// vector, or one value per lane and state (run_lanes): the arithmetic is elementwise either way,
+// so run() and run_lanes() step through the same lines and each lane stays bit for bit run()'s.
+// Moving inputs are staged at t, t + h/2 and t + h of the substep (set_inputs(2 s .. 2 s + 2)).
+struct Rk4_step {
+  std::vector<double> k1, k2, k3, k4, xt;
+  explicit Rk4_step(std::size_t n) : k1(n), k2(n), k3(n), k4(n), xt(n) {}
+
+  template <class Derivative, class Set_inputs>
+  void operator()(std::vector<double>& x, double tt, double h, int s, bool inputs_move, Derivative&& derivative,
+                  Set_inputs&& set_inputs) {
+    const std::size_t n = x.size();
+    if (inputs_move) set_inputs(2 * s);
+    derivative(x.data(), tt, k1.data());
+    for (std::size_t i = 0; i < n; ++i) xt[i] = x[i] + 0.5 * h * k1[i];
+    if (inputs_move) set_inputs(2 * s + 1);
+    derivative(xt.data(), tt + 0.5 * h, k2.data());
+    for (std::size_t i = 0; i < n; ++i) xt[i] = x[i] + 0.5 * h * k2[i];
+    derivative(xt.data(), tt + 0.5 * h, k3.data());
+    for (std::size_t i = 0; i < n; ++i) xt[i] = x[i] + h * k3[i];
+    if (inputs_move) set_inputs(2 * s + 2);
+    derivative(xt.data(), tt + h, k4.data());
+    for (std::size_t i = 0; i < n; ++i) x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+  }
+};
+
 }  // namespace
 
 // Fills `outputs` (samples x outputs) and, with `record_values`, `values` (samples x recorded
@@ -295,7 +321,8 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
   for (std::size_t i = 0; i < I.param_ptr.size(); ++i) *I.param_ptr[i] = params[static_cast<Eigen::Index>(i)];
   // The recorded symbols' past, kept only when prev() reads it.
   std::vector<double> hist(I.prevs.empty() ? 0 : static_cast<std::size_t>(N) * nr);
-  std::vector<double> x(I.initial_state), k1(ns), k2(ns), k3(ns), k4(ns), xt(ns);
+  std::vector<double> x(I.initial_state);
+  Rk4_step step(ns);
   outputs.resize(N, static_cast<Eigen::Index>(I.output_slots.size()));
   if (record_values) values.resize(N, static_cast<Eigen::Index>(nr));
   const bool scheduled = schedule.rows() > 0;
@@ -331,19 +358,11 @@ static Run run(Simulator::Impl& I, const Eigen::Ref<const Eigen::VectorXd>& para
     const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
     double tt = tk;
     const auto kk = static_cast<std::size_t>(k);
+    const auto derivative = [&I](const double* xs, double t, double* dx) { I.derivative(xs, t, dx); };
+    // Stage inputs: u at t, t + h/2, t + h of the substep as each input's intersample mode gives them.
+    const auto stage_inputs = [&I, kk](int j) { I.set_inputs(kk, j); };
     for (int s = 0; s < I.options.substeps; ++s) {
-      // Stage inputs: u at t, t + h/2, t + h of the substep as each input's intersample mode gives them.
-      if (I.inputs_move) I.set_inputs(kk, 2 * s);
-      I.derivative(x.data(), tt, k1.data());
-      for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + 0.5 * h * k1[i];
-      if (I.inputs_move) I.set_inputs(kk, 2 * s + 1);
-      I.derivative(xt.data(), tt + 0.5 * h, k2.data());
-      for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + 0.5 * h * k2[i];
-      I.derivative(xt.data(), tt + 0.5 * h, k3.data());
-      for (std::size_t i = 0; i < ns; ++i) xt[i] = x[i] + h * k3[i];
-      if (I.inputs_move) I.set_inputs(kk, 2 * s + 2);
-      I.derivative(xt.data(), tt + h, k4.data());
-      for (std::size_t i = 0; i < ns; ++i) x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+      step(x, tt, h, s, I.inputs_move, derivative, stage_inputs);
       tt += h;
       for (std::size_t i = 0; i < ns; ++i)
         if (!std::isfinite(x[i]) || std::abs(x[i]) > 1e150) {
@@ -419,7 +438,8 @@ static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd
       else fill(pr.slot, 0.0);
     }
   };
-  std::vector<double> x(ns * L), k1(ns * L), k2(ns * L), k3(ns * L), k4(ns * L), xt(ns * L);
+  std::vector<double> x(ns * L);
+  Rk4_step step(ns * L);
   for (std::size_t i = 0; i < ns; ++i) std::fill_n(x.begin() + static_cast<std::ptrdiff_t>(i * L), L, I.initial_state[i]);
   outputs.assign(L, Eigen::MatrixXd(N, static_cast<Eigen::Index>(I.output_slots.size())));
   ok.assign(L, true);
@@ -445,18 +465,9 @@ static void run_lanes(Simulator::Impl& I, const Eigen::Ref<const Eigen::MatrixXd
     const double h = (I.time[static_cast<std::size_t>(k + 1)] - tk) / I.options.substeps;
     double tt = tk;
     const auto kk = static_cast<std::size_t>(k);
+    const auto stage_inputs = [&set_inputs, kk](int j) { set_inputs(kk, j); };
     for (int s = 0; s < I.options.substeps && live > 0; ++s) {
-      if (I.inputs_move) set_inputs(kk, 2 * s);
-      derivative(x.data(), tt, k1.data());
-      for (std::size_t i = 0; i < ns * L; ++i) xt[i] = x[i] + 0.5 * h * k1[i];
-      if (I.inputs_move) set_inputs(kk, 2 * s + 1);
-      derivative(xt.data(), tt + 0.5 * h, k2.data());
-      for (std::size_t i = 0; i < ns * L; ++i) xt[i] = x[i] + 0.5 * h * k2[i];
-      derivative(xt.data(), tt + 0.5 * h, k3.data());
-      for (std::size_t i = 0; i < ns * L; ++i) xt[i] = x[i] + h * k3[i];
-      if (I.inputs_move) set_inputs(kk, 2 * s + 2);
-      derivative(xt.data(), tt + h, k4.data());
-      for (std::size_t i = 0; i < ns * L; ++i) x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+      step(x, tt, h, s, I.inputs_move, derivative, stage_inputs);
       tt += h;
       for (std::size_t i = 0; i < ns * L; ++i)
         if (ok[i % L] && (!std::isfinite(x[i]) || std::abs(x[i]) > 1e150)) {
