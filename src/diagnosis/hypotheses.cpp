@@ -308,7 +308,6 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   continue_from_special_cases(c, h, r);
   c.say("  refined; judging them by the acceptance rules");
   for (std::size_t i = 1; i < r.trials.size(); ++i) r.trials[i].screening_gain = r.list[i - 1]->gain;
-  d.hypotheses_refined += static_cast<int>(r.list.size());
   if (r.trials.front().ok) {
     r.cost_cur = r.trials.front().cost;
     r.costs_cur = r.trials.front().costs;
@@ -317,6 +316,7 @@ void refine_round(const Context& c, HypothesisSearch& h, Round& r, Diagnosis& d)
   }
   lower_baseline(c, h, r);
   if (refine_worse_than_the_baseline(c, h, r)) lower_baseline(c, h, r);
+  d.hypotheses_refined += static_cast<int>(r.list.size());  // with any hypothesis the retries added
 }
 
 HypothesisSearch search_hypotheses(const Context& context, const NominalFit& nominal, const NoiseFloor& nominal_floor, Diagnosis& d) {

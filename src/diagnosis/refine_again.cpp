@@ -153,6 +153,7 @@ void refine_delays_of_failed_pairs(const Context& c, const HypothesisSearch& h, 
     if (!refined[k].ok) continue;
     r.list.push_back(alone[k]);
     r.trials.push_back(refined[k]);
+    r.trials.back().screening_gain = alone[k]->gain;
   }
 }
 
