@@ -424,10 +424,7 @@ void sensor_candidates(const Context& k, std::size_t j) {
   if (!k.excluded("hysteresis")) {
     Builder b(k.model, "hysteresis", y);
     const std::string w = b.add("w", 0.01 * range, 0.05 * range, false, 0, 0);
-    // The ladder reaches a play of a fifth of the output's range, as backlash's (the same
-    // operator at an input) does: a band of 23 % (random plant 5 010 948) was screened up to 5 %
-    // only, explained too little to be refined, and left the plant "unexplained".
-    for (double f : {0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2}) b.c.grid.push_back({f * range});
+    for (double f : {0.002, 0.005, 0.01, 0.02, 0.05}) b.c.grid.push_back({f * range});
     sensor(b, "_h", "max(" + y + " - " + w + ", min(" + y + " + " + w + ", prev(@self, 1)))");
   }
   // A mirror only makes sense if the data stay non-negative while the model goes negative.

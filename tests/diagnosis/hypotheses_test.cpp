@@ -467,14 +467,6 @@ TEST(Hypotheses, DelayOfAPairThatEndsWorseFromTheFilesValuesIsRefinedAlone) {
   expect_named_alone_in_place(5010869, "time_delay");
 }
 
-// A sensor play band of 23 % of the output's range on a position loop: the hysteresis ladder
-// reached 5 % of the range only, where it explained too little to be refined, and the plant ended
-// "unexplained" (main a28bfa5). Its ladder now reaches a fifth of the range, as backlash's does.
-// (Seed 5 010 948: held out in the fortieth session, development since.)
-TEST(Hypotheses, SensorPlayOfAFifthOfTheRangeIsNamed) {
-  expect_named_alone_in_place(5010948, "hysteresis");
-}
-
 // Random plant `seed` diagnosed whole (one thread), with or without the shortlist's slots: whether
 // every true effect is named at its true place.
 bool every_true_effect_named(unsigned seed, bool slots, const RandomPlantOptions& ro = {}) {
